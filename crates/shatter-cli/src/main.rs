@@ -1,0 +1,5 @@
+//! The `shatter` command line.
+
+fn main() {
+    println!("shatter");
+}

@@ -1,0 +1,12 @@
+//! Geometry for shatter: triangle meshes, an exact 3D Delaunay tetrahedralization and
+//! fracture of closed meshes into bonded fragments.
+//!
+//! This crate knows no physics and no rendering. All coordinates are `f64`
+//! ([`glam::DVec3`]); every topological decision goes through exact predicates.
+
+pub mod delaunay;
+pub mod fracture;
+pub mod mesh;
+
+pub use glam::{DMat3, DVec3};
+pub use mesh::TriMesh;

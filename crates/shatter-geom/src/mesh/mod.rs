@@ -1,0 +1,5 @@
+//! Indexed triangle meshes.
+
+mod trimesh;
+
+pub use trimesh::TriMesh;

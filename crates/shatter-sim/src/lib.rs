@@ -1,0 +1,1 @@
+//! Breakable objects simulated on Rapier.
