@@ -3,6 +3,7 @@
 use glam::DVec3;
 
 use crate::delaunay::DelaunayError;
+use crate::mesh::MeshError;
 
 /// How the random points of the [`Method::Tetra`] method are placed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -97,44 +98,10 @@ pub struct FractureParams {
 /// Why a mesh cannot be fractured.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FractureError {
-    /// The mesh has no triangles.
-    #[error("the mesh is empty (no triangles)")]
-    EmptyMesh,
-    /// A vertex has a NaN or infinite coordinate.
-    #[error("vertex {vertex} has a non-finite coordinate")]
-    NonFinite {
-        /// Index of the vertex.
-        vertex: usize,
-    },
-    /// A triangle refers to a vertex that does not exist.
-    #[error("triangle {triangle} refers to vertex {index}, but the mesh has {vertices} vertices")]
-    BadIndex {
-        /// Index of the triangle.
-        triangle: usize,
-        /// The bad vertex index.
-        index: u32,
-        /// Number of vertices.
-        vertices: usize,
-    },
-    /// The mesh is not a valid closed solid.
-    #[error(
-        "the mesh is not a closed solid: {boundary_edges} boundary edges, {non_manifold_edges} \
-         non-manifold edges, {inconsistent_edges} inconsistently wound edges, \
-         {degenerate_triangles} degenerate triangles"
-    )]
-    NotSolid {
-        /// Edges used by one triangle only.
-        boundary_edges: usize,
-        /// Edges used by more than two triangles.
-        non_manifold_edges: usize,
-        /// Edges used twice in the same direction.
-        inconsistent_edges: usize,
-        /// Triangles with a repeated vertex (after welding).
-        degenerate_triangles: usize,
-    },
-    /// The mesh encloses no volume.
-    #[error("the mesh encloses no volume")]
-    ZeroVolume,
+    /// The mesh is not a valid solid (empty, non-finite, open, non-manifold,
+    /// self-touching, inconsistently wound or without volume); the message has counts.
+    #[error("invalid mesh: {0}")]
+    Mesh(#[from] MeshError),
     /// A fragment count below one.
     #[error("the number of pieces must be at least 1 (got {0})")]
     TooFewPieces(usize),
