@@ -1,12 +1,11 @@
 //! Triangulation of the cap closing a clipped solid: the region of the cutting plane
 //! bounded by the clipped surface's boundary edges, possibly several polygons with holes.
 
-use std::collections::HashMap;
-
 use glam::{DVec2, DVec3};
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 
 use super::clip::Plane;
+use super::piece::FastMap;
 
 /// An original face lying in the cutting plane and facing its positive side; the cap
 /// triangles over it inherit its tag.
@@ -47,7 +46,7 @@ pub(crate) fn triangulate_cap(
 
     let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> =
         ConstrainedDelaunayTriangulation::new();
-    let mut handle_of: HashMap<u32, spade::handles::FixedVertexHandle> = HashMap::new();
+    let mut handle_of: FastMap<u32, spade::handles::FixedVertexHandle> = FastMap::default();
     let mut id_of_handle: Vec<u32> = Vec::new();
     for &(a, b) in boundary {
         for id in [a, b] {

@@ -1,12 +1,10 @@
 //! Clipping a closed solid by a plane, keeping the part on the plane's negative side as
 //! a closed solid (the cut is capped; see [`super::cap`]).
 
-use std::collections::{HashMap, HashSet};
-
 use glam::DVec3;
 
 use super::cap::{Covering, triangulate_cap};
-use super::piece::Piece;
+use super::piece::{FastMap, FastSet, Piece};
 
 /// An oriented plane `n · x = d`; its negative side `n · x < d` is kept by [`clip`].
 /// `tag` is written on the cap triangles the plane creates.
@@ -69,7 +67,7 @@ pub(crate) fn clip(piece: &Piece, plane: &Plane, eps: f64) -> Option<Piece> {
     };
     // Per vertex of `out`: does it lie on the plane?
     let mut on_plane: Vec<bool> = s.iter().map(|&v| v == 0.0).collect();
-    let mut cut: HashMap<(u32, u32), u32> = HashMap::new();
+    let mut cut: FastMap<(u32, u32), u32> = FastMap::default();
     let mut coverings: Vec<Covering> = Vec::new();
 
     for (t, tri) in piece.tris.iter().enumerate() {
@@ -128,18 +126,22 @@ pub(crate) fn clip(piece: &Piece, plane: &Plane, eps: f64) -> Option<Piece> {
         }
     }
 
-    // Boundary edges of the kept surface: directed edges whose reverse is missing.
-    let mut directed: HashSet<(u32, u32)> = HashSet::with_capacity(out.tris.len() * 3);
+    // Boundary edges of the kept surface: directed edges whose reverse is missing. Both
+    // ends of a boundary edge lie on the plane, so only such edges are collected.
+    let mut directed: FastSet<(u32, u32)> = FastSet::default();
     for t in &out.tris {
         for k in 0..3 {
-            directed.insert((t[k], t[(k + 1) % 3]));
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            if on_plane[a as usize] && on_plane[b as usize] {
+                directed.insert((a, b));
+            }
         }
     }
     let mut boundary: Vec<(u32, u32)> = Vec::new();
     for t in &out.tris {
         for k in 0..3 {
             let (a, b) = (t[k], t[(k + 1) % 3]);
-            if !directed.contains(&(b, a)) && on_plane[a as usize] && on_plane[b as usize] {
+            if on_plane[a as usize] && on_plane[b as usize] && !directed.contains(&(b, a)) {
                 boundary.push((a, b));
             }
         }

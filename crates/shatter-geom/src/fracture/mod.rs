@@ -15,6 +15,7 @@ mod cap;
 mod clip;
 mod convex;
 mod entry;
+mod inside;
 mod massprops;
 mod merge;
 mod params;

@@ -1,7 +1,8 @@
 //! The working representation of a solid during fracture: an indexed, welded triangle
 //! mesh whose triangles carry the tag of the cut that created them.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
+use std::hash::{BuildHasherDefault, Hasher};
 
 use glam::DVec3;
 
@@ -25,7 +26,7 @@ impl Piece {
     /// A piece from a mesh, welding vertices at exactly equal positions; all triangles
     /// are surface triangles.
     pub fn from_mesh_welded(mesh: &TriMesh) -> Self {
-        let mut map: HashMap<[u64; 3], u32> = HashMap::with_capacity(mesh.positions.len());
+        let mut map: FastMap<[u64; 3], u32> = FastMap::default();
         let mut pos = Vec::with_capacity(mesh.positions.len());
         let remap: Vec<u32> = mesh
             .positions
@@ -91,7 +92,7 @@ impl Piece {
     pub fn components(self) -> Vec<Piece> {
         let n = self.tris.len();
         let mut uf = UnionFind::new(n);
-        let mut edge_owner: HashMap<(u32, u32), usize> = HashMap::with_capacity(n * 3 / 2);
+        let mut edge_owner: FastMap<(u32, u32), usize> = FastMap::default();
         for (t, tri) in self.tris.iter().enumerate() {
             for k in 0..3 {
                 let (a, b) = (tri[k], tri[(k + 1) % 3]);
@@ -104,7 +105,7 @@ impl Piece {
                 }
             }
         }
-        let mut comp_of_root: HashMap<usize, usize> = HashMap::new();
+        let mut comp_of_root: FastMap<usize, usize> = FastMap::default();
         let mut out: Vec<Piece> = Vec::new();
         for t in 0..n {
             let r = uf.find(t);
@@ -160,3 +161,45 @@ impl UnionFind {
         }
     }
 }
+
+/// A fast multiplicative hasher for the small integer keys of the clipping maps (the
+/// default SipHash dominated the profile; the keys are not attacker-controlled).
+#[derive(Debug, Default, Clone, Copy)]
+pub(crate) struct FastHasher(u64);
+
+impl FastHasher {
+    #[inline]
+    fn add(&mut self, word: u64) {
+        self.0 = (self.0.rotate_left(5) ^ word).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+}
+
+impl Hasher for FastHasher {
+    #[inline]
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    #[inline]
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.add(u64::from(b));
+        }
+    }
+    #[inline]
+    fn write_u32(&mut self, i: u32) {
+        self.add(u64::from(i));
+    }
+    #[inline]
+    fn write_u64(&mut self, i: u64) {
+        self.add(i);
+    }
+    #[inline]
+    fn write_usize(&mut self, i: usize) {
+        self.add(i as u64);
+    }
+}
+
+/// A hash map with [`FastHasher`].
+pub(crate) type FastMap<K, V> = HashMap<K, V, BuildHasherDefault<FastHasher>>;
+/// A hash set with [`FastHasher`].
+pub(crate) type FastSet<K> = HashSet<K, BuildHasherDefault<FastHasher>>;

@@ -4,7 +4,7 @@ use glam::DVec3;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
-use super::massprops::winding_number;
+use super::inside::InsideTester;
 use super::params::Pattern;
 use super::piece::Piece;
 
@@ -13,22 +13,21 @@ const TRIES_PER_POINT: usize = 200;
 
 /// Samples inside a closed solid by rejection from its bounds.
 pub(crate) struct InsideSampler<'a> {
-    piece: &'a Piece,
+    tester: InsideTester<'a>,
     lo: DVec3,
     hi: DVec3,
 }
 
 impl<'a> InsideSampler<'a> {
     pub fn new(piece: &'a Piece) -> Self {
-        let (lo, hi) = bounds(&piece.pos);
-        Self { piece, lo, hi }
+        let tester = InsideTester::new(piece);
+        let (lo, hi) = tester.bounds();
+        Self { tester, lo, hi }
     }
 
     /// Is `p` inside the solid?
     pub fn contains(&self, p: DVec3) -> bool {
-        p.cmpge(self.lo).all()
-            && p.cmple(self.hi).all()
-            && winding_number(&self.piece.pos, &self.piece.tris, p) > 0.5
+        self.tester.contains(p)
     }
 
     /// A uniform point of the bounding box.

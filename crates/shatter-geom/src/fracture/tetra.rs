@@ -9,7 +9,8 @@ use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
 use super::convex::{TET_FACES, tet_volume};
-use super::massprops::{mass_properties, winding_number};
+use super::inside::InsideTester;
+use super::massprops::mass_properties;
 use super::params::{FractureError, Placement};
 use super::piece::{Piece, UnionFind};
 use super::seeds::InsideSampler;
@@ -75,11 +76,12 @@ pub(crate) fn tetra(
     // Keep every tetrahedron when the points' hull is the mesh (a convex mesh with all
     // points inside); otherwise only those whose centroid is inside the mesh.
     let all_inside = (hull_volume - mesh_volume).abs() <= 1e-9 * mesh_volume;
+    let tester = InsideTester::new(mesh);
     let keep: Vec<bool> = (0..nt)
         .map(|t| {
             all_inside || {
                 let c = corners(t);
-                winding_number(&mesh.pos, &mesh.tris, (c[0] + c[1] + c[2] + c[3]) / 4.0) > 0.5
+                tester.contains((c[0] + c[1] + c[2] + c[3]) / 4.0)
             }
         })
         .collect();

@@ -1,0 +1,92 @@
+//! Fast inside tests for a closed mesh: parity of a vertical ray's crossings, with the
+//! triangles bucketed on a 2D grid so a query looks at a few of them; queries whose ray
+//! passes too close to an edge fall back to the generalized winding number.
+
+use glam::{DVec2, DVec3};
+
+use super::massprops::winding_number;
+use super::piece::Piece;
+use super::seeds::bounds;
+
+/// Inside tests against one closed, outward solid.
+pub(crate) struct InsideTester<'a> {
+    piece: &'a Piece,
+    lo: DVec3,
+    hi: DVec3,
+    n: usize,
+    cell: DVec2,
+    buckets: Vec<Vec<u32>>,
+}
+
+impl<'a> InsideTester<'a> {
+    /// Buckets the triangles of `piece` over a grid of about one cell per two triangles.
+    pub fn new(piece: &'a Piece) -> Self {
+        let (lo, hi) = bounds(&piece.pos);
+        let n = ((piece.tris.len() as f64 / 2.0).sqrt().ceil() as usize).clamp(1, 128);
+        let ext = DVec2::new(hi.x - lo.x, hi.y - lo.y).max(DVec2::splat(f64::MIN_POSITIVE));
+        let cell = ext / n as f64;
+        let mut buckets = vec![Vec::new(); n * n];
+        let idx = |v: f64, o: f64, c: f64| (((v - o) / c) as usize).min(n - 1);
+        for (t, tri) in piece.tris.iter().enumerate() {
+            let [a, b, c] = tri.map(|i| piece.pos[i as usize]);
+            let (tlo, thi) = (a.min(b).min(c), a.max(b).max(c));
+            for i in idx(tlo.x, lo.x, cell.x)..=idx(thi.x, lo.x, cell.x) {
+                for j in idx(tlo.y, lo.y, cell.y)..=idx(thi.y, lo.y, cell.y) {
+                    buckets[j * n + i].push(t as u32);
+                }
+            }
+        }
+        Self {
+            piece,
+            lo,
+            hi,
+            n,
+            cell,
+            buckets,
+        }
+    }
+
+    /// Bounds of the solid.
+    pub fn bounds(&self) -> (DVec3, DVec3) {
+        (self.lo, self.hi)
+    }
+
+    /// Is `p` inside the solid? (Points on the surface may go either way.)
+    pub fn contains(&self, p: DVec3) -> bool {
+        if !(p.cmpge(self.lo).all() && p.cmple(self.hi).all()) {
+            return false;
+        }
+        let i = (((p.x - self.lo.x) / self.cell.x) as usize).min(self.n - 1);
+        let j = (((p.y - self.lo.y) / self.cell.y) as usize).min(self.n - 1);
+        let q = DVec2::new(p.x, p.y);
+        let mut crossings = 0u32;
+        // Distinct triangles may share the ray's hit on an edge: too close is ambiguous.
+        let tol = 1e-9;
+        for &t in &self.buckets[j * self.n + i] {
+            let [a, b, c] = self.piece.tris[t as usize].map(|k| self.piece.pos[k as usize]);
+            let (a2, b2, c2) = (a.truncate(), b.truncate(), c.truncate());
+            let area = (b2 - a2).perp_dot(c2 - a2);
+            if area == 0.0 {
+                continue;
+            }
+            let w0 = (b2 - q).perp_dot(c2 - q) / area;
+            let w1 = (c2 - q).perp_dot(a2 - q) / area;
+            let w2 = 1.0 - w0 - w1;
+            if w0 < -tol || w1 < -tol || w2 < -tol {
+                continue;
+            }
+            if w0 < tol || w1 < tol || w2 < tol {
+                return self.winding(p);
+            }
+            let z = w0 * a.z + w1 * b.z + w2 * c.z;
+            if z > p.z {
+                crossings += 1;
+            }
+        }
+        crossings % 2 == 1
+    }
+
+    fn winding(&self, p: DVec3) -> bool {
+        winding_number(&self.piece.pos, &self.piece.tris, p) > 0.5
+    }
+}
