@@ -239,3 +239,36 @@ fn merge_offsets_indices_and_adds_volumes() {
     assert!((merged.volume() - parts[0].volume() - parts[1].volume()).abs() < 1e-12);
     assert_eq!(merged.validate_solid(), Ok(()));
 }
+
+#[test]
+fn overlapping_cubes_are_self_intersecting() {
+    let m = two_cubes(DVec3::splat(0.5));
+    // Topologically fine: two closed components.
+    let r = m.check();
+    assert!(r.is_solid());
+    let pairs = m.self_intersections(usize::MAX);
+    assert!(!pairs.is_empty());
+    match m.validate_solid() {
+        Err(MeshError::SelfIntersecting { pairs: n, first }) => {
+            assert_eq!(n, pairs.len());
+            assert_eq!(first, pairs[0]);
+            // Every reported pair: one triangle from each cube.
+            assert!(pairs.iter().all(|&(a, b)| a < 12 && b >= 12));
+        }
+        other => panic!("{other:?}"),
+    }
+    // Cubes that only touch face to face (no shared vertex position) touch too.
+    let touching = two_cubes(DVec3::new(1.0, 0.5, 0.5));
+    assert!(!touching.self_intersections(1).is_empty());
+    // Apart by a hair: clean.
+    let apart = two_cubes(DVec3::new(1.0 + 1e-12, 0.5, 0.5));
+    assert!(apart.self_intersections(1).is_empty());
+}
+
+#[test]
+fn builtin_shapes_do_not_self_intersect() {
+    for name in shapes::NAMES {
+        let m = shapes::by_name(name).unwrap();
+        assert_eq!(m.self_intersections(usize::MAX), [], "{name}");
+    }
+}

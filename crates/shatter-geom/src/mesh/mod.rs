@@ -2,6 +2,7 @@
 //! solid, and inside/outside queries by generalized winding number.
 
 mod check;
+mod intersect;
 mod mass;
 mod trimesh;
 mod validate;

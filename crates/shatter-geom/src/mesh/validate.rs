@@ -39,6 +39,14 @@ pub enum MeshError {
     /// Vertices where the surface touches itself.
     #[error("{0} non-manifold vertices (self-touching surface)")]
     NonManifoldVertices(usize),
+    /// Triangles that share no vertex touch or cross.
+    #[error("{pairs} pairs of triangles intersect (first: triangles {} and {})", first.0, first.1)]
+    SelfIntersecting {
+        /// Number of intersecting pairs.
+        pairs: usize,
+        /// The first pair found.
+        first: (u32, u32),
+    },
     /// The surface is consistently wound inward; [`TriMesh::orient_outward`] fixes it.
     #[error("mesh is wound inward (signed volume {volume})")]
     Inward {
@@ -53,10 +61,11 @@ pub enum MeshError {
 impl TriMesh {
     /// Checks that the mesh is a valid solid: non-empty, finite, indices in range, and,
     /// after welding, closed, manifold (edges and vertices), consistently wound, and
-    /// outward. Zero-area triangles are allowed (they are counted by
-    /// [`check`](TriMesh::check)). Self-intersection is detected only where surfaces
-    /// touch at a shared vertex position (non-manifold vertices); crossing triangles
-    /// that share no vertex are not detected.
+    /// outward, without self-intersection: surfaces touching at a shared vertex position
+    /// (non-manifold vertices) and triangles sharing no vertex that touch or cross
+    /// ([`self_intersections`](TriMesh::self_intersections), exact) are refused; a fold
+    /// between triangles sharing a vertex is not looked for. Zero-area triangles are
+    /// allowed (they are counted by [`check`](TriMesh::check)).
     ///
     /// ```
     /// use shatter_geom::{mesh::MeshError, shapes};
@@ -81,6 +90,13 @@ impl TriMesh {
         }
         if r.non_manifold_vertices > 0 {
             return Err(MeshError::NonManifoldVertices(r.non_manifold_vertices));
+        }
+        let crossing = self.self_intersections(usize::MAX);
+        if let Some(&first) = crossing.first() {
+            return Err(MeshError::SelfIntersecting {
+                pairs: crossing.len(),
+                first,
+            });
         }
         if r.signed_volume < 0.0 {
             return Err(MeshError::Inward {
