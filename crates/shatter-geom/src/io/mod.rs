@@ -1,0 +1,1 @@
+//! Mesh file import and export.
