@@ -140,7 +140,7 @@ pub fn run(args: &BenchFractureArgs) -> Result<(), CliError> {
             method: case.method,
             seed: args.seed,
         };
-        let mesh = load_source(&config)?;
+        let (mesh, _) = load_source(&config)?;
         let (warm, _, _) = fracture_timed(&mesh, &config)?;
         let mut times = Vec::with_capacity(args.runs as usize);
         for _ in 0..args.runs {

@@ -344,13 +344,16 @@ impl FractureReport {
     }
 }
 
-/// Loads (and scales) the mesh a configuration names.
-pub fn load_source(config: &FractureConfig) -> Result<TriMesh, CliError> {
-    let mesh = match &config.source {
-        MeshSource::File(path) => library::load_mesh(path)?,
-        MeshSource::Shape(name) => library::builtin_shape(*name)?,
+/// Loads (and scales) the mesh a configuration names and checks that it is a valid
+/// solid; returns it with any warnings (an inward mesh is flipped).
+pub fn load_source(config: &FractureConfig) -> Result<(TriMesh, Vec<String>), CliError> {
+    let (mesh, origin) = match &config.source {
+        MeshSource::File(path) => (library::load_mesh(path)?, path.display().to_string()),
+        MeshSource::Shape(name) => (library::builtin_shape(*name)?, format!("shape {name}")),
     };
-    Ok(library::scaled(mesh, config.scale))
+    let mut mesh = library::scaled(mesh, config.scale);
+    let warnings = library::validate_solid(&mut mesh, &origin)?.into_iter().collect();
+    Ok((mesh, warnings))
 }
 
 /// Fractures an already loaded mesh; returns the fracture, its warnings and the time in ms.
@@ -367,8 +370,9 @@ pub fn fracture_timed(
 /// Runs `shatter fracture`.
 pub fn run(args: &FractureArgs) -> Result<(), CliError> {
     let (config, out) = args.validate()?;
-    let mesh = load_source(&config)?;
-    let (fracture, warnings, millis) = fracture_timed(&mesh, &config)?;
+    let (mesh, mut warnings) = load_source(&config)?;
+    let (fracture, more_warnings, millis) = fracture_timed(&mesh, &config)?;
+    warnings.extend(more_warnings);
     for w in &warnings {
         eprintln!("warning: {w}");
     }
