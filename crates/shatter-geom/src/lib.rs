@@ -7,6 +7,7 @@
 pub mod delaunay;
 pub mod fracture;
 pub mod mesh;
+pub mod sampling;
 
 pub use glam::{DMat3, DVec3};
 pub use mesh::TriMesh;
