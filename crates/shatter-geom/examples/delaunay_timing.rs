@@ -22,21 +22,33 @@ fn status_kb(key: &str) -> Option<u64> {
     line.split_whitespace().nth(1)?.parse().ok()
 }
 
+/// CPU time of this thread in seconds (`/proc/thread-self/schedstat`, nanoseconds), so that
+/// a loaded machine does not inflate the figures.
+fn cpu_secs() -> f64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .map_or(f64::NAN, |ns| ns * 1e-9)
+}
+
 fn run(points: &[DVec3]) -> Result<(), Box<dyn std::error::Error>> {
     let n = points.len();
     // Reset the high-water mark to the current RSS (Linux >= 4.0).
     let _ = std::fs::write("/proc/self/clear_refs", "5");
     let before = status_kb("VmRSS:").unwrap_or(0);
     let t0 = Instant::now();
+    let c0 = cpu_secs();
     let t = tetrahedralize(points)?;
+    let cpu = cpu_secs() - c0;
     let secs = t0.elapsed().as_secs_f64();
     let peak = status_kb("VmHWM:").unwrap_or(0);
     let result_bytes = t.tetrahedra.len() * 32 + t.representative.len() * 4;
     println!(
-        "{n:>9} points {:>9} tets {:>9.1} ms {:>6.2} Mpts/s  peak +{:>6.1} B/pt  result {:>6.1} B/pt",
+        "{n:>9} points {:>9} tets {:>8.1} ms wall {:>8.1} ms cpu {:>5.2} Mpts/s(cpu)  peak +{:>6.1} B/pt  result {:>6.1} B/pt",
         t.tetrahedra.len(),
         secs * 1e3,
-        n as f64 / secs / 1e6,
+        cpu * 1e3,
+        n as f64 / cpu / 1e6,
         (peak.saturating_sub(before)) as f64 * 1024.0 / n as f64,
         result_bytes as f64 / n as f64,
     );
@@ -81,12 +93,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for &n in &sizes {
         let pts = uniform(n, 1);
         run(&pts)?;
-        if let (Some(path), Some(&max)) = (&write, sizes.iter().max()) {
-            if n == max {
-                let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
-                for p in &pts {
-                    writeln!(f, "{:?} {:?} {:?}", p.x, p.y, p.z)?;
-                }
+        if let (Some(path), Some(&max)) = (&write, sizes.iter().max())
+            && n == max
+        {
+            let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
+            for p in &pts {
+                writeln!(f, "{:?} {:?} {:?}", p.x, p.y, p.z)?;
             }
         }
     }

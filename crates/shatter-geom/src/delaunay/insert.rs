@@ -162,11 +162,10 @@ impl Mesh {
             if bf.verts.iter().all(|&x| x != INF) {
                 last_finite = s;
             }
-            for j in 0..4 {
+            for (j, &(a, b)) in EDGE[apex].iter().enumerate() {
                 if j == apex {
                     continue;
                 }
-                let (a, b) = EDGE[apex][j];
                 let u = bf.verts[a as usize];
                 let v = bf.verts[b as usize];
                 // Look for the partner's edge (v, u); otherwise register (u, v).

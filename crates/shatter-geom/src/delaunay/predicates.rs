@@ -28,20 +28,94 @@ fn c(p: &[f64; 3]) -> Coord3D<f64> {
     }
 }
 
+/// Shewchuk's `EPSILON` (half an ulp of 1).
+const EPS: f64 = f64::EPSILON / 2.0;
+/// Error bound factor of the orientation's floating-point stage (Shewchuk's `o3derrboundA`).
+const O3D_BOUND: f64 = (7.0 + 56.0 * EPS) * EPS;
+/// Error bound factor of the insphere's floating-point stage (Shewchuk's `isperrboundA`),
+/// applied below to a static bound of his permanent.
+const ISP_BOUND: f64 = (16.0 + 224.0 * EPS) * EPS;
+
 /// Orientation of the tetrahedron `(a, b, c, d)` in this module's convention:
 /// positive when `(b - a) · ((c - a) × (d - a)) > 0`, zero when coplanar. Exact sign.
+///
+/// An inlined floating-point stage (Shewchuk's stage A, with his error bound) decides
+/// almost every call; the rest goes to `robust::orient3d`'s adaptive exact stages.
 #[inline(always)]
 pub fn orient(a: &[f64; 3], b: &[f64; 3], cc: &[f64; 3], d: &[f64; 3]) -> f64 {
-    // robust::orient3d(a, b, c, d) = det[a - d; b - d; c - d] = -(b - a)·((c - a)×(d - a)).
+    // Same evaluation as Shewchuk's orient3d (differences to the last point), so his
+    // bound applies: det[a - d; b - d; c - d] = -(b - a)·((c - a)×(d - a)).
+    let adx = a[0] - d[0];
+    let bdx = b[0] - d[0];
+    let cdx = cc[0] - d[0];
+    let ady = a[1] - d[1];
+    let bdy = b[1] - d[1];
+    let cdy = cc[1] - d[1];
+    let adz = a[2] - d[2];
+    let bdz = b[2] - d[2];
+    let cdz = cc[2] - d[2];
+    let bdxcdy = bdx * cdy;
+    let cdxbdy = cdx * bdy;
+    let cdxady = cdx * ady;
+    let adxcdy = adx * cdy;
+    let adxbdy = adx * bdy;
+    let bdxady = bdx * ady;
+    let det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+    let permanent = (bdxcdy.abs() + cdxbdy.abs()) * adz.abs()
+        + (cdxady.abs() + adxcdy.abs()) * bdz.abs()
+        + (adxbdy.abs() + bdxady.abs()) * cdz.abs();
+    if det.abs() > O3D_BOUND * permanent {
+        return -det;
+    }
     -robust::orient3d(c(a), c(b), c(cc), c(d))
 }
 
 /// Unperturbed insphere test for a positively oriented tetrahedron `(a, b, c, d)`:
 /// positive when `e` is strictly inside its circumsphere, negative outside, zero on it.
+///
+/// An inlined floating-point stage with a semi-static error bound decides almost every
+/// call; the rest goes to `robust::insphere`'s adaptive exact stages.
 #[inline(always)]
 pub fn insphere_raw(a: &[f64; 3], b: &[f64; 3], cc: &[f64; 3], d: &[f64; 3], e: &[f64; 3]) -> f64 {
-    // robust::insphere is positive inside for tetrahedra with robust::orient3d > 0, which
-    // are negatively oriented in our convention.
+    // Shewchuk's stage-A evaluation of insphere (robust's sign: positive inside for
+    // tetrahedra that are negatively oriented in our convention).
+    let aex = a[0] - e[0];
+    let bex = b[0] - e[0];
+    let cex = cc[0] - e[0];
+    let dex = d[0] - e[0];
+    let aey = a[1] - e[1];
+    let bey = b[1] - e[1];
+    let cey = cc[1] - e[1];
+    let dey = d[1] - e[1];
+    let aez = a[2] - e[2];
+    let bez = b[2] - e[2];
+    let cez = cc[2] - e[2];
+    let dez = d[2] - e[2];
+    let ab = aex * bey - bex * aey;
+    let bc = bex * cey - cex * bey;
+    let cd = cex * dey - dex * cey;
+    let da = dex * aey - aex * dey;
+    let ac = aex * cey - cex * aey;
+    let bd = bex * dey - dex * bey;
+    let abc = aez * bc - bez * ac + cez * ab;
+    let bcd = bez * cd - cez * bd + dez * bc;
+    let cda = cez * da + dez * ac + aez * cd;
+    let dab = dez * ab + aez * bd + bez * da;
+    let alift = aex * aex + aey * aey + aez * aez;
+    let blift = bex * bex + bey * bey + bez * bez;
+    let clift = cex * cex + cey * cey + cez * cez;
+    let dlift = dex * dex + dey * dey + dez * dez;
+    let det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+    // Shewchuk's permanent is at most 24 * mx * my * mz * (mx² + my² + mz²) where m* bound
+    // the absolute differences (each of its four groups is at most 6 mx my mz times a lift
+    // of at most mx² + my² + mz²); the factor 1 + 1e-12 covers rounding of this bound.
+    let mx = aex.abs().max(bex.abs()).max(cex.abs().max(dex.abs()));
+    let my = aey.abs().max(bey.abs()).max(cey.abs().max(dey.abs()));
+    let mz = aez.abs().max(bez.abs()).max(cez.abs().max(dez.abs()));
+    let bound = (ISP_BOUND * 24.0 * (1.0 + 1e-12)) * (mx * my * mz) * (mx * mx + my * my + mz * mz);
+    if det.abs() > bound {
+        return -det;
+    }
     -robust::insphere(c(a), c(b), c(cc), c(d), c(e))
 }
 

@@ -182,12 +182,11 @@ mod tests {
     fn edge_table_pairs_faces_with_reversed_edges() {
         // For every face j containing the apex, the apex followed by EDGE[apex][j] is a
         // rotation of the outward winding FACES[j].
-        for apex in 0..4 {
-            for j in 0..4 {
+        for (apex, row) in EDGE.iter().enumerate() {
+            for (j, &(u, v)) in row.iter().enumerate() {
                 if j == apex {
                     continue;
                 }
-                let (u, v) = EDGE[apex][j];
                 let f = FACES[j];
                 let k = f.iter().position(|&x| x == apex).expect("apex on face");
                 assert_eq!((f[(k + 1) % 3], f[(k + 2) % 3]), (u as usize, v as usize));
