@@ -130,8 +130,10 @@ fn truncated_and_corrupted_files_never_panic() {
     io::write_glb(&mut glb, &objects).unwrap();
     let mut obj = Vec::new();
     io::write_obj(&mut obj, &objects, None).unwrap();
+    // ASCII STL parsing is slow in debug builds: a smaller mesh.
+    let cylinder = shapes::cylinder();
     let mut stl_a = Vec::new();
-    io::write_stl(&mut stl_a, &bird, StlFormat::Ascii).unwrap();
+    io::write_stl(&mut stl_a, &cylinder, StlFormat::Ascii).unwrap();
     let mut stl_b = Vec::new();
     io::write_stl(&mut stl_b, &bird, StlFormat::Binary).unwrap();
     for (bytes, format) in [
@@ -141,7 +143,7 @@ fn truncated_and_corrupted_files_never_panic() {
         (&stl_b, MeshFormat::Stl),
     ] {
         let full = io::parse_mesh(bytes, format, "full").unwrap();
-        assert_eq!(full.triangles.len(), 1394);
+        assert!([1394, 80].contains(&full.triangles.len()));
         for k in 1..64 {
             let cut = bytes.len() * k / 64;
             let _ = io::parse_mesh(&bytes[..cut], format, "cut");

@@ -272,3 +272,25 @@ fn builtin_shapes_do_not_self_intersect() {
         assert_eq!(m.self_intersections(usize::MAX), [], "{name}");
     }
 }
+
+#[test]
+fn self_intersection_with_a_huge_triangle_among_small_ones() {
+    // One huge triangle slicing through a fine sphere: found, and the grid stays small.
+    let sphere = shapes::sphere(64, 32);
+    let slab = TriMesh::new(
+        vec![
+            DVec3::new(-1e6, 0.1, -1e6),
+            DVec3::new(1e6, 0.1, -1e6),
+            DVec3::new(0.0, 0.1, 1e6),
+        ],
+        vec![[0, 2, 1]],
+    );
+    let m = TriMesh::merge(&[sphere, slab]);
+    let pairs = m.self_intersections(usize::MAX);
+    // The plane y = 0.1 crosses one band of the sphere: every pair involves the slab.
+    let slab_index = m.triangles.len() as u32 - 1;
+    assert!(pairs.len() >= 64, "{}", pairs.len());
+    assert!(pairs.iter().all(|&(_, b)| b == slab_index));
+    // A limit returns that many.
+    assert_eq!(m.self_intersections(3).len(), 3);
+}

@@ -2,6 +2,7 @@
 //! the bird's concavity.
 #![allow(clippy::unwrap_used)]
 
+use std::collections::HashSet;
 use std::f64::consts::PI;
 
 use shatter_geom::{DVec3, TriMesh, shapes};
@@ -188,4 +189,99 @@ fn bird_is_nearly_mirror_symmetric() {
     assert!((lo.z + hi.z).abs() < 1e-12, "{lo} {hi}");
     let c = bird.centroid();
     assert!(c.z.abs() < 1e-3 * (hi.z - lo.z), "{c}");
+}
+
+/// Volume of the convex hull of `points` by a small incremental hull with exact
+/// orientation tests (test helper, O(n·h)).
+fn hull_volume(points: &[DVec3]) -> f64 {
+    let c = |p: DVec3| robust::Coord3D {
+        x: p.x,
+        y: p.y,
+        z: p.z,
+    };
+    // robust::orient3d > 0: d is below the plane of a b c (a b c counter-clockwise seen
+    // from above), i.e. d is inside for an outward face.
+    let orient = |a: usize, b: usize, cc: usize, d: DVec3| {
+        robust::orient3d(c(points[a]), c(points[b]), c(points[cc]), c(d))
+    };
+    let p0 = 0;
+    let far = |from: &dyn Fn(DVec3) -> f64| {
+        (0..points.len())
+            .max_by(|&i, &j| from(points[i]).total_cmp(&from(points[j])))
+            .unwrap()
+    };
+    let p1 = far(&|p| (p - points[p0]).length());
+    let p2 = far(&|p| (points[p1] - points[p0]).cross(p - points[p0]).length());
+    let p3 = far(&|p| {
+        (points[p1] - points[p0])
+            .cross(points[p2] - points[p0])
+            .dot(p - points[p0])
+            .abs()
+    });
+    let inside = (points[p0] + points[p1] + points[p2] + points[p3]) / 4.0;
+    let mut faces: Vec<[usize; 3]> = [[p0, p1, p2], [p0, p3, p1], [p1, p3, p2], [p2, p3, p0]]
+        .into_iter()
+        .map(|[a, b, cc]| {
+            if orient(a, b, cc, inside) > 0.0 {
+                [a, b, cc]
+            } else {
+                [a, cc, b]
+            }
+        })
+        .collect();
+    for (i, &p) in points.iter().enumerate() {
+        let visible: Vec<bool> = faces
+            .iter()
+            .map(|f| orient(f[0], f[1], f[2], p) < 0.0)
+            .collect();
+        if !visible.contains(&true) {
+            continue;
+        }
+        let edges: HashSet<(usize, usize)> = faces
+            .iter()
+            .zip(&visible)
+            .filter(|&(_, &v)| v)
+            .flat_map(|(f, _)| [(f[0], f[1]), (f[1], f[2]), (f[2], f[0])])
+            .collect();
+        let mut next: Vec<[usize; 3]> = faces
+            .iter()
+            .zip(&visible)
+            .filter(|&(_, &v)| !v)
+            .map(|(f, _)| *f)
+            .collect();
+        for &(a, b) in &edges {
+            if !edges.contains(&(b, a)) {
+                next.push([a, b, i]);
+            }
+        }
+        faces = next;
+    }
+    faces
+        .iter()
+        .map(|f| {
+            let [a, b, cc] = f.map(|k| points[k] - inside);
+            a.dot(b.cross(cc)) / 6.0
+        })
+        .sum()
+}
+
+#[test]
+fn hull_helper_matches_convex_shapes() {
+    assert!((hull_volume(&shapes::cube().positions) - 1.0).abs() < 1e-12);
+    let s = shapes::sphere(24, 12);
+    assert!((hull_volume(&s.positions) - s.volume()).abs() < 1e-12);
+    let c = shapes::cylinder();
+    assert!((hull_volume(&c.positions) - c.volume()).abs() < 1e-12);
+}
+
+#[test]
+fn bird_volume_is_well_below_its_convex_hull() {
+    let bird = shapes::bird();
+    let hull = hull_volume(&bird.positions);
+    let ratio = bird.volume() / hull;
+    eprintln!("bird volume {}, hull volume {hull}, ratio {ratio}", bird.volume());
+    assert!(ratio < 0.5, "bird fills {ratio} of its hull");
+    // Convex shapes fill their hull exactly; the capsule too.
+    let capsule = shapes::capsule();
+    assert!((capsule.volume() / hull_volume(&capsule.positions) - 1.0).abs() < 1e-9);
 }

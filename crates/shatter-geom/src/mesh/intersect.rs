@@ -1,5 +1,5 @@
 //! Exact self-intersection detection: pairs of triangles, sharing no vertex, that touch
-//! or cross. Broad phase: sweep and prune along `x`; narrow phase: exact orientation
+//! or cross. Broad phase: a sparse uniform grid; narrow phase: exact orientation
 //! predicates (`robust::orient3d`, `orient2d`), so touching counts as intersecting and no
 //! tolerance is involved.
 
@@ -126,35 +126,119 @@ impl TriMesh {
                 continue;
             }
             let [a, b, c] = mesh.triangle(t);
-            if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] || is_degenerate(a, b, c) {
+            let finite = a.is_finite() && b.is_finite() && c.is_finite();
+            if !finite
+                || tri[0] == tri[1]
+                || tri[1] == tri[2]
+                || tri[0] == tri[2]
+                || is_degenerate(a, b, c)
+            {
                 continue;
             }
             boxes.push((a.min(b).min(c), a.max(b).max(c), t as u32));
         }
-        boxes.sort_unstable_by(|p, q| p.0.x.total_cmp(&q.0.x));
+        let grid = Grid::new(&boxes);
         let mut found = Vec::new();
-        for (k, &(lo, hi, s)) in boxes.iter().enumerate() {
-            for &(lo2, hi2, t) in &boxes[k + 1..] {
-                if lo2.x > hi.x {
-                    break;
-                }
-                if lo2.y > hi.y || lo.y > hi2.y || lo2.z > hi.z || lo.z > hi2.z {
-                    continue;
-                }
-                let (ts, tt) = (mesh.triangles[s as usize], mesh.triangles[t as usize]);
-                if ts.iter().any(|v| tt.contains(v)) {
-                    continue;
-                }
-                if triangles_meet(mesh.triangle(s as usize), mesh.triangle(t as usize)) {
-                    found.push((s.min(t), s.max(t)));
-                    if found.len() >= limit {
-                        return found;
+        'cells: for (cell, members) in grid.cells() {
+            for (k, &i) in members.iter().enumerate() {
+                let (lo, hi, s) = boxes[i as usize];
+                for &j in &members[k + 1..] {
+                    let (lo2, hi2, t) = boxes[j as usize];
+                    if lo2.cmpgt(hi).any() || lo.cmpgt(hi2).any() {
+                        continue;
+                    }
+                    // Test each pair once: in the cell holding its boxes' overlap corner.
+                    if grid.cell_of(lo.max(lo2)) != cell {
+                        continue;
+                    }
+                    let (ts, tt) = (mesh.triangles[s as usize], mesh.triangles[t as usize]);
+                    if ts.iter().any(|v| tt.contains(v)) {
+                        continue;
+                    }
+                    if triangles_meet(mesh.triangle(s as usize), mesh.triangle(t as usize)) {
+                        found.push((s.min(t), s.max(t)));
+                        if found.len() >= limit {
+                            break 'cells;
+                        }
                     }
                 }
             }
         }
         found.sort_unstable();
         found
+    }
+}
+
+/// Broad phase: a sparse uniform grid of triangle boxes, cells about the size of a
+/// typical triangle, so each pair test is local (linear in practice; a sweep along one
+/// axis was quadratic on large closed meshes).
+struct Grid {
+    origin: DVec3,
+    cell: f64,
+    cells: Vec<([i64; 3], Vec<u32>)>,
+}
+
+impl Grid {
+    fn new(boxes: &[(DVec3, DVec3, u32)]) -> Self {
+        let origin = boxes
+            .iter()
+            .fold(DVec3::splat(f64::INFINITY), |acc, b| acc.min(b.0));
+        let mean_extent = boxes
+            .iter()
+            .map(|(lo, hi, _)| (*hi - *lo).max_element())
+            .sum::<f64>()
+            / boxes.len().max(1) as f64;
+        let cell = if mean_extent > 0.0 && mean_extent.is_finite() {
+            1.5 * mean_extent
+        } else {
+            1.0
+        };
+        let mut grid = Grid {
+            origin,
+            cell,
+            cells: Vec::new(),
+        };
+        // Coarsen until the boxes cover a bounded number of cells in all (a few huge
+        // triangles among small ones would otherwise fill millions).
+        let budget = 16 * boxes.len() as u64 + 1024;
+        loop {
+            let covered = boxes.iter().fold(0u64, |sum, (lo, hi, _)| {
+                let (a, b) = (grid.cell_of(*lo), grid.cell_of(*hi));
+                let span = |k: usize| (b[k].saturating_sub(a[k]) as u64).saturating_add(1);
+                sum.saturating_add(span(0).saturating_mul(span(1)).saturating_mul(span(2)))
+            });
+            if covered <= budget || !grid.cell.is_finite() {
+                break;
+            }
+            grid.cell *= 2.0;
+        }
+        let mut map: std::collections::HashMap<[i64; 3], Vec<u32>> =
+            std::collections::HashMap::new();
+        for (i, (lo, hi, _)) in boxes.iter().enumerate() {
+            let (a, b) = (grid.cell_of(*lo), grid.cell_of(*hi));
+            for x in a[0]..=b[0] {
+                for y in a[1]..=b[1] {
+                    for z in a[2]..=b[2] {
+                        map.entry([x, y, z]).or_default().push(i as u32);
+                    }
+                }
+            }
+        }
+        // Sorted cells: a deterministic order, so a `limit` cuts the same pairs each run.
+        grid.cells = map.into_iter().collect();
+        grid.cells.sort_unstable_by_key(|(k, _)| *k);
+        grid
+    }
+
+    fn cell_of(&self, p: DVec3) -> [i64; 3] {
+        ((p - self.origin) / self.cell)
+            .floor()
+            .as_i64vec3()
+            .to_array()
+    }
+
+    fn cells(&self) -> impl Iterator<Item = ([i64; 3], &[u32])> {
+        self.cells.iter().map(|(k, v)| (*k, v.as_slice()))
     }
 }
 
