@@ -28,7 +28,14 @@ pub fn box_grid_fracture(cells: [u32; 3], size: DVec3) -> Fracture {
         for y in 0..ny {
             for x in 0..nx {
                 let lo = origin + cell * DVec3::new(x as f64, y as f64, z as f64);
-                let on_boundary = [x == 0, x == nx - 1, y == 0, y == ny - 1, z == 0, z == nz - 1];
+                let on_boundary = [
+                    x == 0,
+                    x == nx - 1,
+                    y == 0,
+                    y == ny - 1,
+                    z == 0,
+                    z == nz - 1,
+                ];
                 fragments.push(box_fragment(lo, lo + cell, on_boundary));
             }
         }
@@ -60,7 +67,11 @@ pub fn box_grid_fracture(cells: [u32; 3], size: DVec3) -> Fracture {
             }
         }
     }
-    Fracture { fragments, bonds }
+    Fracture {
+        fragments,
+        bonds,
+        ..Default::default()
+    }
 }
 
 /// One axis-aligned box fragment from `lo` to `hi`. `on_boundary` flags the faces
@@ -94,8 +105,11 @@ pub fn box_fragment(lo: DVec3, hi: DVec3, on_boundary: [bool; 6]) -> Fragment {
     let e = hi - lo;
     let volume = e.x * e.y * e.z;
     let inertia = DMat3::from_diagonal(
-        DVec3::new(e.y * e.y + e.z * e.z, e.x * e.x + e.z * e.z, e.x * e.x + e.y * e.y)
-            * (volume / 12.0),
+        DVec3::new(
+            e.y * e.y + e.z * e.z,
+            e.x * e.x + e.z * e.z,
+            e.x * e.x + e.y * e.y,
+        ) * (volume / 12.0),
     );
     Fragment {
         mesh: TriMesh::new(corners.clone(), triangles),

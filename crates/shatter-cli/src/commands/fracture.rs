@@ -352,7 +352,9 @@ pub fn load_source(config: &FractureConfig) -> Result<(TriMesh, Vec<String>), Cl
         MeshSource::Shape(name) => (library::builtin_shape(*name)?, format!("shape {name}")),
     };
     let mut mesh = library::scaled(mesh, config.scale);
-    let warnings = library::validate_solid(&mut mesh, &origin)?.into_iter().collect();
+    let warnings = library::validate_solid(&mut mesh, &origin)?
+        .into_iter()
+        .collect();
     Ok((mesh, warnings))
 }
 

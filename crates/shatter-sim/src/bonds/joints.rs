@@ -21,11 +21,11 @@ pub(crate) fn build(
 ) {
     let prepared = live.prepared.clone();
     for f in 0..prepared.fracture.fragments.len() as u32 {
-        let body = world.insert_body(
-            RigidBodyBuilder::dynamic()
-                .pose(pose)
-                .user_data(tag(Kind::Fragment, object, f)),
-        );
+        let body = world.insert_body(RigidBodyBuilder::dynamic().pose(pose).user_data(tag(
+            Kind::Fragment,
+            object,
+            f,
+        )));
         if live.attach_fragment(world, object, f, body, surface, None) == 0 {
             world.remove_body(body);
             continue;
@@ -71,7 +71,9 @@ pub(crate) fn break_overloaded(world: &mut PhysicsWorld, live: &mut LiveObject) 
     let strength = live.strength;
     let mut broke = 0;
     for b in 0..live.joints.len() {
-        let Some(handle) = live.joints[b] else { continue };
+        let Some(handle) = live.joints[b] else {
+            continue;
+        };
         let over = world
             .impulse_joints
             .get(handle)

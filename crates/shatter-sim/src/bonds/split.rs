@@ -126,11 +126,7 @@ pub(crate) fn split(
             rb.set_linvel(v + w.cross(ci - c), true);
             rb.set_angvel(w, true);
         } else {
-            let j: Vec3 = part
-                .iter()
-                .filter_map(|f| impulses.get(f))
-                .copied()
-                .sum();
+            let j: Vec3 = part.iter().filter_map(|f| impulses.get(f)).copied().sum();
             let m = rb.mass();
             let v0 = if m > 0.0 { j / m } else { Vec3::ZERO };
             rb.set_linvel(v0, true);

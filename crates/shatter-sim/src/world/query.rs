@@ -10,8 +10,8 @@ use shatter_geom::fracture::Fracture;
 
 use crate::bonds::clusters::Loads;
 use crate::bonds::joints;
-use crate::bonds::tags::{Kind, untag};
 use crate::bonds::split::world_com;
+use crate::bonds::tags::{Kind, untag};
 use crate::object::{BondModel, ProjectileSpec};
 use crate::world::state::{ObjectId, World};
 
@@ -30,8 +30,9 @@ impl World {
     pub fn ray_cast(&self, origin: Vec3, dir: Vec3) -> Option<(ObjectId, Vec3)> {
         let dir = dir.try_normalize()?;
         let ray = Ray::new(origin, dir);
-        let is_fragment =
-            |_: ColliderHandle, co: &Collider| matches!(untag(co.user_data), Some((Kind::Fragment, _, _)));
+        let is_fragment = |_: ColliderHandle, co: &Collider| {
+            matches!(untag(co.user_data), Some((Kind::Fragment, _, _)))
+        };
         let filter = QueryFilter::default().predicate(&is_fragment);
         let (handle, toi) = self.physics.cast_ray(&ray, Real::MAX, true, filter)?;
         let co = self.physics.colliders.get(handle)?;
@@ -124,7 +125,9 @@ impl World {
         let mut p = Vec3::ZERO;
         let mut l = Vec3::ZERO;
         for h in self.object_bodies(id) {
-            let Some(rb) = self.physics.bodies.get(h) else { continue };
+            let Some(rb) = self.physics.bodies.get(h) else {
+                continue;
+            };
             if !rb.is_dynamic() {
                 continue;
             }
