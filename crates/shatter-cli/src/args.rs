@@ -34,19 +34,17 @@ pub fn parse_vec3(text: &str) -> Result<DVec3, String> {
     Ok(DVec3::from_array(xyz))
 }
 
-/// Parses a comma-separated list of positive integers, such as `1000,10000`.
-pub fn parse_sizes(text: &str) -> Result<Vec<usize>, String> {
-    let mut sizes = Vec::new();
-    for part in text.split(',').map(str::trim) {
-        let n: usize = part
-            .parse()
-            .map_err(|_| format!("'{part}' is not a whole number"))?;
-        if n == 0 {
-            return Err("sizes must be at least 1".to_string());
-        }
-        sizes.push(n);
+/// Parses one benchmark size: a whole number of at least 1 (used with
+/// `value_delimiter = ','`, so `--sizes 1000,10000` gives a list).
+pub fn parse_size(text: &str) -> Result<usize, String> {
+    let n: usize = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{text}' is not a whole number"))?;
+    if n == 0 {
+        return Err("sizes must be at least 1".to_string());
     }
-    Ok(sizes)
+    Ok(n)
 }
 
 /// A validated, strictly positive scale.
@@ -221,10 +219,10 @@ mod tests {
 
     #[test]
     fn sizes_parse_and_refuse_zero() {
-        assert_eq!(parse_sizes("10,2000").unwrap(), vec![10, 2000]);
-        assert!(parse_sizes("10,0").is_err());
-        assert!(parse_sizes("10,-1").is_err());
-        assert!(parse_sizes("").is_err());
+        assert_eq!(parse_size("2000").unwrap(), 2000);
+        assert!(parse_size("0").is_err());
+        assert!(parse_size("-1").is_err());
+        assert!(parse_size("").is_err());
     }
 
     #[test]

@@ -3,10 +3,14 @@
 
 use std::path::Path;
 
-use shatter_geom::fracture::Fracture;
+use shatter_geom::fracture::{Fracture, FractureParams, Method, Pattern, Placement};
+use shatter_geom::io::{self, ExportObject};
 use shatter_geom::{DVec3, TriMesh};
 
 use crate::args::{Distribution, MeshFormat, ShapeName};
+use crate::commands::fracture::{
+    FractureConfig, MethodConfig, PatternArg, PlacementArg, VoronoiSeeds,
+};
 use crate::error::CliError;
 
 fn not_landed(what: &str) -> CliError {
@@ -53,36 +57,113 @@ pub fn validate_solid(mesh: &mut TriMesh, origin: &str) -> Result<Option<String>
     }
 }
 
-/// Loads a mesh file (OBJ, STL or GLB/glTF, by extension).
+/// Loads a mesh file (OBJ, STL or GLB/glTF, by extension). Every failure is bad input
+/// (exit code 2), named by the file.
 pub fn load_mesh(path: &Path) -> Result<TriMesh, CliError> {
-    if !path.is_file() {
+    if !path.exists() {
         return Err(CliError::input(format!("{}: no such file", path.display())));
     }
-    Err(not_landed("mesh import"))
+    // The library's errors already start with the file name.
+    io::load_mesh(path).map_err(CliError::input)
 }
 
-/// Writes one mesh.
+/// Writes one mesh (no interior faces).
 pub fn write_mesh(path: &Path, format: MeshFormat, mesh: &TriMesh) -> Result<(), CliError> {
-    let _ = (path, format, mesh);
-    Err(not_landed("mesh export"))
+    let name = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "mesh".to_string());
+    save(path, format, &[ExportObject::new(&name, mesh)])
 }
 
-/// Writes a fracture: one object / node per fragment, interior faces in their own material.
+/// Writes a fracture: one object (OBJ `o fragment_i`) or node (GLB) per fragment, cut
+/// faces under the `interior` material, the original surface under `surface`.
 pub fn write_fracture(
     path: &Path,
     format: MeshFormat,
     fracture: &Fracture,
 ) -> Result<(), CliError> {
-    let _ = (path, format, fracture);
-    Err(not_landed("fracture export"))
+    let names: Vec<String> = (0..fracture.fragments.len())
+        .map(|i| format!("fragment_{i}"))
+        .collect();
+    let objects: Vec<ExportObject<'_>> = fracture
+        .fragments
+        .iter()
+        .zip(&names)
+        .map(|(f, name)| ExportObject::new(name, &f.mesh).with_interior(&f.interior))
+        .collect();
+    save(path, format, &objects)
 }
 
-/// Fractures `mesh` as `config` says; returns the fracture and any warnings (such as an
-/// inward mesh that was flipped).
+fn save(path: &Path, format: MeshFormat, objects: &[ExportObject<'_>]) -> Result<(), CliError> {
+    let result = match format {
+        MeshFormat::Obj => io::save_obj(path, objects),
+        MeshFormat::Glb => io::save_glb(path, objects),
+    };
+    result.map_err(|e| match e {
+        // Failing to create or write the file: the user's path (checked up front, so
+        // this is rare: a full disk, a race).
+        io::MeshIoError::Io { .. } => CliError::input(format!("cannot write: {e}")),
+        // Anything else means shatter produced an inconsistent mesh: a bug.
+        other => CliError::internal(format!("{}: export failed: {other}", path.display())),
+    })
+}
+
+/// Fractures `mesh` as `config` says; returns the fracture and its warnings (an inward
+/// mesh that was flipped, merged slivers, ...). Every library error describes the input
+/// (the mesh or the parameters), so it is bad input (exit code 2).
 pub fn fracture(
     mesh: &TriMesh,
-    config: &crate::commands::fracture::FractureConfig,
+    config: &FractureConfig,
 ) -> Result<(Fracture, Vec<String>), CliError> {
-    let _ = mesh;
-    Err(not_landed(&format!("fracture ({})", config.describe())))
+    let params = FractureParams {
+        method: method_params(&config.method),
+        seed: config.seed,
+    };
+    let mut result = shatter_geom::fracture::fracture(mesh, &params)
+        .map_err(|e| CliError::input(format!("{}: {e}", config.describe())))?;
+    let warnings = std::mem::take(&mut result.warnings);
+    Ok((result, warnings))
+}
+
+fn method_params(method: &MethodConfig) -> Method {
+    match method {
+        MethodConfig::Tetra {
+            random_vertices,
+            skip,
+            center,
+            placement,
+        } => Method::Tetra {
+            random_vertices: *random_vertices,
+            skip: *skip,
+            center: *center,
+            placement: match placement {
+                PlacementArg::Interior => Placement::Interior,
+                PlacementArg::Thesis => Placement::Thesis,
+            },
+        },
+        MethodConfig::Voronoi { seeds, impact } => {
+            let (pieces, pattern, seeds) = match seeds {
+                VoronoiSeeds::Pattern { count, pattern } => (*count, *pattern, None),
+                VoronoiSeeds::Points(points) => {
+                    (points.len(), PatternArg::Uniform, Some(points.clone()))
+                }
+            };
+            Method::Voronoi {
+                pieces,
+                pattern: match pattern {
+                    PatternArg::Uniform => Pattern::Uniform,
+                    PatternArg::Clustered => Pattern::Clustered,
+                    PatternArg::Radial => Pattern::Radial,
+                    PatternArg::Splinter => Pattern::Splinter,
+                },
+                impact: *impact,
+                seeds,
+            }
+        }
+        MethodConfig::Slice { planes } => Method::Slice {
+            pieces: *planes,
+            planes: None,
+        },
+    }
 }

@@ -86,4 +86,22 @@ mod tests {
     fn the_command_line_definition_is_consistent() {
         Cli::command().debug_assert();
     }
+
+    /// Regression: `--sizes` was declared as `Vec<usize>` with a parser returning a whole
+    /// `Vec`, and clap panicked ("Mismatch between definition and access of `sizes`") on
+    /// every `bench delaunay` run.
+    #[test]
+    fn bench_delaunay_sizes_list_parses_without_a_clap_panic() {
+        let cli = Cli::try_parse_from(["shatter", "bench", "delaunay", "--sizes", "10,200"])
+            .expect("valid arguments");
+        let Command::Bench(BenchCommand::Delaunay(args)) = cli.command else {
+            panic!("parsed as another command");
+        };
+        assert_eq!(args.sizes, vec![10, 200]);
+        let cli = Cli::try_parse_from(["shatter", "bench", "delaunay"]).expect("defaults");
+        let Command::Bench(BenchCommand::Delaunay(args)) = cli.command else {
+            panic!("parsed as another command");
+        };
+        assert_eq!(args.sizes, vec![1000, 10_000, 100_000, 1_000_000]);
+    }
 }

@@ -43,7 +43,10 @@ mod tests {
 
     #[test]
     fn peak_is_at_least_current_on_linux() {
-        if let (Some(peak), Some(now)) = (peak_rss_bytes(), current_rss_bytes()) {
+        // Current first: the peak read afterwards can only be higher.
+        let now = current_rss_bytes();
+        let peak = peak_rss_bytes();
+        if let (Some(peak), Some(now)) = (peak, now) {
             assert!(peak >= now, "peak {peak} < current {now}");
         }
     }

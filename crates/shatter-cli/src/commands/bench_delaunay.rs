@@ -6,7 +6,7 @@ use clap::Args;
 use serde::Serialize;
 use shatter_geom::delaunay;
 
-use crate::args::{Distribution, parse_sizes};
+use crate::args::{Distribution, parse_size};
 use crate::error::{CliError, ResultExt};
 use crate::library;
 use crate::memory;
@@ -15,7 +15,7 @@ use crate::memory;
 #[derive(Debug, Args)]
 pub struct BenchDelaunayArgs {
     /// Comma-separated numbers of points.
-    #[arg(long, value_name = "N,N,...", value_parser = parse_sizes,
+    #[arg(long, value_name = "N,N,...", value_parser = parse_size, value_delimiter = ',',
           default_value = "1000,10000,100000,1000000")]
     pub sizes: Vec<usize>,
     /// Distribution of the random points.

@@ -91,3 +91,28 @@ pub fn read_tets(path: &Path) -> Vec<[usize; 4]> {
         })
         .collect()
 }
+
+/// Re-imports a mesh file written by shatter with the library's own loader.
+pub fn reimport(path: &Path) -> shatter_geom::TriMesh {
+    shatter_geom::io::load_mesh(path)
+        .unwrap_or_else(|e| panic!("cannot re-import {}: {e}", path.display()))
+}
+
+/// A unit right tetrahedron as OBJ text (1-based faces); `inward` flips every face.
+pub fn tetrahedron_obj(inward: bool) -> String {
+    let faces = [[1, 3, 2], [1, 2, 4], [1, 4, 3], [2, 3, 4]];
+    let mut s = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n");
+    for [a, b, c] in faces {
+        if inward {
+            s.push_str(&format!("f {a} {c} {b}\n"));
+        } else {
+            s.push_str(&format!("f {a} {b} {c}\n"));
+        }
+    }
+    s
+}
+
+/// Relative difference of two volumes.
+pub fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs().max(1e-300)
+}
