@@ -6,7 +6,9 @@
 
 pub mod delaunay;
 pub mod fracture;
+pub mod io;
 pub mod mesh;
+pub mod shapes;
 
 pub use glam::{DMat3, DVec3};
 pub use mesh::TriMesh;
