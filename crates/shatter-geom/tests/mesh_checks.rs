@@ -294,3 +294,59 @@ fn self_intersection_with_a_huge_triangle_among_small_ones() {
     // A limit returns that many.
     assert_eq!(m.self_intersections(3).len(), 3);
 }
+
+fn ball(radius: f64) -> TriMesh {
+    shapes::sphere(24, 12).transformed(DVec3::splat(2.0 * radius), DVec3::ZERO)
+}
+
+#[test]
+fn hollow_ball_needs_an_inward_cavity() {
+    let hollow = TriMesh::merge(&[ball(1.0), ball(0.5).flipped()]);
+    assert_eq!(hollow.validate_solid(), Ok(()));
+    let expected = ball(1.0).volume() - ball(0.5).volume();
+    assert!((hollow.volume() - expected).abs() < 1e-12);
+    // A point in the cavity is outside the solid.
+    assert!(!hollow.contains(DVec3::ZERO));
+    assert!(hollow.contains(DVec3::new(0.75, 0.0, 0.0)));
+
+    // Cavity wound outward: one shell wrong.
+    let wrong = TriMesh::merge(&[ball(1.0), ball(0.5)]);
+    assert_eq!(
+        wrong.validate_solid(),
+        Err(MeshError::InwardShells { wrong: 1, total: 2 })
+    );
+    assert_eq!(
+        wrong.validate_solid().unwrap_err().to_string(),
+        "1 of 2 shells are wound the wrong way for their nesting"
+    );
+
+    // Everything flipped: the unambiguous repair.
+    let mut inverted = hollow.flipped();
+    assert!(matches!(
+        inverted.validate_solid(),
+        Err(MeshError::Inward { .. })
+    ));
+    assert_eq!(inverted.orient_outward(), Ok(true));
+    assert_eq!(inverted.validate_solid(), Ok(()));
+}
+
+#[test]
+fn ball_in_a_cavity_is_outward_again() {
+    let m = TriMesh::merge(&[ball(1.0), ball(0.6).flipped(), ball(0.3)]);
+    assert_eq!(m.validate_solid(), Ok(()));
+    assert!(m.contains(DVec3::ZERO));
+    assert!(!m.contains(DVec3::new(0.45, 0.0, 0.0)));
+}
+
+#[test]
+fn one_flipped_shell_among_outward_ones_is_refused() {
+    let a = shapes::cube();
+    let b = shapes::cube()
+        .transformed(DVec3::ONE, DVec3::new(3.0, 0.0, 0.0))
+        .flipped();
+    let mut m = TriMesh::merge(&[a, b]);
+    let err = m.validate_solid().unwrap_err();
+    assert_eq!(err, MeshError::InwardShells { wrong: 1, total: 2 });
+    // Not flipped by the repair either: flipping all would break the other shell.
+    assert_eq!(m.orient_outward(), Err(err));
+}

@@ -279,7 +279,10 @@ fn bird_volume_is_well_below_its_convex_hull() {
     let bird = shapes::bird();
     let hull = hull_volume(&bird.positions);
     let ratio = bird.volume() / hull;
-    eprintln!("bird volume {}, hull volume {hull}, ratio {ratio}", bird.volume());
+    eprintln!(
+        "bird volume {}, hull volume {hull}, ratio {ratio}",
+        bird.volume()
+    );
     assert!(ratio < 0.5, "bird fills {ratio} of its hull");
     // Convex shapes fill their hull exactly; the capsule too.
     let capsule = shapes::capsule();

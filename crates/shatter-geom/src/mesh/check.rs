@@ -80,14 +80,14 @@ struct EdgeUse {
 }
 
 /// Union–find over dense indices.
-struct DisjointSets(Vec<u32>);
+pub(super) struct DisjointSets(Vec<u32>);
 
 impl DisjointSets {
-    fn new(n: usize) -> Self {
+    pub(super) fn new(n: usize) -> Self {
         Self((0..n as u32).collect())
     }
 
-    fn find(&mut self, mut x: u32) -> u32 {
+    pub(super) fn find(&mut self, mut x: u32) -> u32 {
         while self.0[x as usize] != x {
             let parent = self.0[self.0[x as usize] as usize];
             self.0[x as usize] = parent;
@@ -96,7 +96,7 @@ impl DisjointSets {
         x
     }
 
-    fn union(&mut self, a: u32, b: u32) {
+    pub(super) fn union(&mut self, a: u32, b: u32) {
         let (ra, rb) = (self.find(a), self.find(b));
         if ra != rb {
             self.0[ra.max(rb) as usize] = ra.min(rb);

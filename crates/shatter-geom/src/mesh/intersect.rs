@@ -92,9 +92,17 @@ fn segment_meets_triangle(d: DVec3, e: DVec3, [a, b, c]: [DVec3; 3]) -> bool {
 
 /// Two non-degenerate triangles intersect (closed sets), decided exactly.
 pub(crate) fn triangles_meet(t: [DVec3; 3], u: [DVec3; 3]) -> bool {
-    let coplanar = u.iter().all(|&p| o3(t[0], t[1], t[2], p) == 0.0);
-    if coplanar {
+    // Early exact rejection: one triangle strictly on one side of the other's plane.
+    let strictly_one_side = |s: [f64; 3]| s.iter().all(|&x| x > 0.0) || s.iter().all(|&x| x < 0.0);
+    let u_vs_t = u.map(|p| o3(t[0], t[1], t[2], p));
+    if strictly_one_side(u_vs_t) {
+        return false;
+    }
+    if u_vs_t.iter().all(|&x| x == 0.0) {
         return coplanar_meet(t, u);
+    }
+    if strictly_one_side(t.map(|p| o3(u[0], u[1], u[2], p))) {
+        return false;
     }
     // Non-coplanar: if they meet, an edge of one meets the other.
     (0..3).any(|i| segment_meets_triangle(t[i], t[(i + 1) % 3], u))

@@ -4,6 +4,7 @@
 mod check;
 mod intersect;
 mod mass;
+mod shells;
 mod trimesh;
 mod validate;
 mod weld;

@@ -4,6 +4,7 @@
 use thiserror::Error;
 
 use super::TriMesh;
+use super::shells::{self, ShellOrientation};
 
 /// Why a mesh is not a valid solid. Each variant carries the offending data.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -53,6 +54,15 @@ pub enum MeshError {
         /// The (negative) signed volume.
         volume: f64,
     },
+    /// Some shells (connected components) are wound against their nesting: a solid
+    /// wound inward, or a cavity wound outward, among correctly wound shells.
+    #[error("{wrong} of {total} shells are wound the wrong way for their nesting")]
+    InwardShells {
+        /// Shells in error.
+        wrong: usize,
+        /// All shells.
+        total: usize,
+    },
     /// The closed surface encloses no volume.
     #[error("mesh encloses zero volume")]
     ZeroVolume,
@@ -61,7 +71,8 @@ pub enum MeshError {
 impl TriMesh {
     /// Checks that the mesh is a valid solid: non-empty, finite, indices in range, and,
     /// after welding, closed, manifold (edges and vertices), consistently wound, and
-    /// outward, without self-intersection: surfaces touching at a shared vertex position
+    /// outward — each shell (connected component) outward if it is a solid, inward if it is
+    /// a cavity inside another shell — without self-intersection: surfaces touching at a shared vertex position
     /// (non-manifold vertices) and triangles sharing no vertex that touch or cross
     /// ([`self_intersections`](TriMesh::self_intersections), exact) are refused; a fold
     /// between triangles sharing a vertex is not looked for. Zero-area triangles are
@@ -98,15 +109,27 @@ impl TriMesh {
                 first,
             });
         }
-        if r.signed_volume < 0.0 {
-            return Err(MeshError::Inward {
+        if r.components == 1 {
+            if r.signed_volume == 0.0 || r.signed_volume.is_nan() {
+                return Err(MeshError::ZeroVolume);
+            }
+            return if r.signed_volume < 0.0 {
+                Err(MeshError::Inward {
+                    volume: r.signed_volume,
+                })
+            } else {
+                Ok(())
+            };
+        }
+        match shells::orientation(&self.welded()) {
+            ShellOrientation::Outward => Ok(()),
+            ShellOrientation::Inward => Err(MeshError::Inward {
                 volume: r.signed_volume,
-            });
+            }),
+            ShellOrientation::Mixed { wrong, total } => {
+                Err(MeshError::InwardShells { wrong, total })
+            }
         }
-        if r.signed_volume == 0.0 || r.signed_volume.is_nan() {
-            return Err(MeshError::ZeroVolume);
-        }
-        Ok(())
     }
 
     /// The checks that need no topology: non-empty, finite coordinates, indices in range.
@@ -142,7 +165,9 @@ impl TriMesh {
     /// Repairs the one unambiguous defect: a closed, consistently wound mesh with a
     /// negative signed volume is flipped in place. Returns `Ok(true)` if it flipped,
     /// `Ok(false)` if the mesh was already outward, and the validation error otherwise
-    /// (the mesh is then unchanged). The orientation is decided for the mesh as a whole.
+    /// (the mesh is then unchanged). With several shells, the mesh is flipped only when
+    /// every shell is wrong and flipping them all fixes every one (solids outward,
+    /// cavities inward); a mix of right and wrong shells is an error.
     ///
     /// ```
     /// use shatter_geom::shapes;
