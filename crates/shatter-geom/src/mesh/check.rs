@@ -80,14 +80,14 @@ struct EdgeUse {
 }
 
 /// Union–find over dense indices.
-struct DisjointSets(Vec<u32>);
+pub(super) struct DisjointSets(Vec<u32>);
 
 impl DisjointSets {
-    fn new(n: usize) -> Self {
+    pub(super) fn new(n: usize) -> Self {
         Self((0..n as u32).collect())
     }
 
-    fn find(&mut self, mut x: u32) -> u32 {
+    pub(super) fn find(&mut self, mut x: u32) -> u32 {
         while self.0[x as usize] != x {
             let parent = self.0[self.0[x as usize] as usize];
             self.0[x as usize] = parent;
@@ -96,7 +96,7 @@ impl DisjointSets {
         x
     }
 
-    fn union(&mut self, a: u32, b: u32) {
+    pub(super) fn union(&mut self, a: u32, b: u32) {
         let (ra, rb) = (self.find(a), self.find(b));
         if ra != rb {
             self.0[ra.max(rb) as usize] = ra.min(rb);
@@ -106,7 +106,7 @@ impl DisjointSets {
 
 /// Whether the triangle `a b c` has zero area, decided exactly: it does when its
 /// projections onto the three coordinate planes all have zero signed area.
-fn is_degenerate(a: glam::DVec3, b: glam::DVec3, c: glam::DVec3) -> bool {
+pub(super) fn is_degenerate(a: glam::DVec3, b: glam::DVec3, c: glam::DVec3) -> bool {
     use robust::{Coord, orient2d};
     let proj = |p: glam::DVec3, i: usize, j: usize| Coord { x: p[i], y: p[j] };
     [(0, 1), (1, 2), (2, 0)]

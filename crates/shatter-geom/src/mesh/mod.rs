@@ -2,7 +2,9 @@
 //! solid, and inside/outside queries by generalized winding number.
 
 mod check;
+mod intersect;
 mod mass;
+mod shells;
 mod trimesh;
 mod validate;
 mod weld;

@@ -8,6 +8,12 @@ use glam::DVec3;
 /// right-hand normal `(b - a) × (c - a)` points out of a closed, outward mesh and its
 /// signed volume is positive.
 ///
+/// Indices are trusted: [`check`](TriMesh::check), [`welded`](TriMesh::welded) and
+/// [`validate_solid`](TriMesh::validate_solid) accept any input, but the geometric
+/// queries (volume, inertia, winding number, …) index `positions` directly and panic on an
+/// out-of-range index. Meshes from [`crate::io`] and [`crate::shapes`] are always in
+/// range; validate meshes built by hand from user data first.
+///
 /// ```
 /// use shatter_geom::{DVec3, TriMesh};
 /// // A unit right tetrahedron, wound outward.

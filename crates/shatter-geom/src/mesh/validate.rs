@@ -4,6 +4,7 @@
 use thiserror::Error;
 
 use super::TriMesh;
+use super::shells::{self, ShellOrientation};
 
 /// Why a mesh is not a valid solid. Each variant carries the offending data.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -39,11 +40,28 @@ pub enum MeshError {
     /// Vertices where the surface touches itself.
     #[error("{0} non-manifold vertices (self-touching surface)")]
     NonManifoldVertices(usize),
+    /// Triangles that share no vertex touch or cross.
+    #[error("{pairs} pairs of triangles intersect (first: triangles {} and {})", first.0, first.1)]
+    SelfIntersecting {
+        /// Number of intersecting pairs.
+        pairs: usize,
+        /// The first pair found.
+        first: (u32, u32),
+    },
     /// The surface is consistently wound inward; [`TriMesh::orient_outward`] fixes it.
     #[error("mesh is wound inward (signed volume {volume})")]
     Inward {
         /// The (negative) signed volume.
         volume: f64,
+    },
+    /// Some shells (connected components) are wound against their nesting: a solid
+    /// wound inward, or a cavity wound outward, among correctly wound shells.
+    #[error("{wrong} of {total} shells are wound the wrong way for their nesting")]
+    InwardShells {
+        /// Shells in error.
+        wrong: usize,
+        /// All shells.
+        total: usize,
     },
     /// The closed surface encloses no volume.
     #[error("mesh encloses zero volume")]
@@ -53,10 +71,12 @@ pub enum MeshError {
 impl TriMesh {
     /// Checks that the mesh is a valid solid: non-empty, finite, indices in range, and,
     /// after welding, closed, manifold (edges and vertices), consistently wound, and
-    /// outward. Zero-area triangles are allowed (they are counted by
-    /// [`check`](TriMesh::check)). Self-intersection is detected only where surfaces
-    /// touch at a shared vertex position (non-manifold vertices); crossing triangles
-    /// that share no vertex are not detected.
+    /// outward — each shell (connected component) outward if it is a solid, inward if it is
+    /// a cavity inside another shell — without self-intersection: surfaces touching at a shared vertex position
+    /// (non-manifold vertices) and triangles sharing no vertex that touch or cross
+    /// ([`self_intersections`](TriMesh::self_intersections), exact) are refused; a fold
+    /// between triangles sharing a vertex is not looked for. Zero-area triangles are
+    /// allowed (they are counted by [`check`](TriMesh::check)).
     ///
     /// ```
     /// use shatter_geom::{mesh::MeshError, shapes};
@@ -82,15 +102,34 @@ impl TriMesh {
         if r.non_manifold_vertices > 0 {
             return Err(MeshError::NonManifoldVertices(r.non_manifold_vertices));
         }
-        if r.signed_volume < 0.0 {
-            return Err(MeshError::Inward {
-                volume: r.signed_volume,
+        let crossing = self.self_intersections(usize::MAX);
+        if let Some(&first) = crossing.first() {
+            return Err(MeshError::SelfIntersecting {
+                pairs: crossing.len(),
+                first,
             });
         }
-        if r.signed_volume == 0.0 || r.signed_volume.is_nan() {
-            return Err(MeshError::ZeroVolume);
+        if r.components == 1 {
+            if r.signed_volume == 0.0 || r.signed_volume.is_nan() {
+                return Err(MeshError::ZeroVolume);
+            }
+            return if r.signed_volume < 0.0 {
+                Err(MeshError::Inward {
+                    volume: r.signed_volume,
+                })
+            } else {
+                Ok(())
+            };
         }
-        Ok(())
+        match shells::orientation(&self.welded()) {
+            ShellOrientation::Outward => Ok(()),
+            ShellOrientation::Inward => Err(MeshError::Inward {
+                volume: r.signed_volume,
+            }),
+            ShellOrientation::Mixed { wrong, total } => {
+                Err(MeshError::InwardShells { wrong, total })
+            }
+        }
     }
 
     /// The checks that need no topology: non-empty, finite coordinates, indices in range.
@@ -126,7 +165,9 @@ impl TriMesh {
     /// Repairs the one unambiguous defect: a closed, consistently wound mesh with a
     /// negative signed volume is flipped in place. Returns `Ok(true)` if it flipped,
     /// `Ok(false)` if the mesh was already outward, and the validation error otherwise
-    /// (the mesh is then unchanged). The orientation is decided for the mesh as a whole.
+    /// (the mesh is then unchanged). With several shells, the mesh is flipped only when
+    /// every shell is wrong and flipping them all fixes every one (solids outward,
+    /// cavities inward); a mix of right and wrong shells is an error.
     ///
     /// ```
     /// use shatter_geom::shapes;

@@ -10,6 +10,11 @@ use super::TriMesh;
 pub(crate) fn solid_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
     let (la, lb, lc) = (a.length(), b.length(), c.length());
     let numerator = a.dot(b.cross(c));
+    if numerator == 0.0 {
+        // Seen edge-on (the point in the triangle's plane): no solid angle. On the
+        // triangle itself this takes the mean of the limits ±2π from either side.
+        return 0.0;
+    }
     let denominator = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
     2.0 * numerator.atan2(denominator)
 }
@@ -17,7 +22,8 @@ pub(crate) fn solid_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
 impl TriMesh {
     /// Generalized winding number of `p`: the solid angle the outward surface subtends at
     /// `p`, over 4π. For a closed outward mesh it is 1 inside, 0 outside (½ on the
-    /// surface), and it degrades gracefully on meshes with small holes. Cost: one
+    /// surface where the point's coplanarity with its triangle is computed exactly; on
+    /// other surface points it is either value), and it degrades gracefully on meshes with small holes. Cost: one
     /// `atan2` per triangle.
     ///
     /// ```

@@ -1,0 +1,137 @@
+//! Splitting a cluster body into the connected components of its intact bonds.
+//!
+//! Every component becomes a body with the old body's pose (all bodies of an object share
+//! the object's frame, so colliders keep their offsets). A component of a moving body
+//! moves as its material did: `v_i = v + ω × (c_i − c)`, `ω_i = ω`. This conserves linear
+//! momentum (`Σ m_i c_i = M c`) and angular momentum about any fixed point (the parallel
+//! axis terms `Σ m_i r_i × (ω × r_i)` are exactly what the old inertia held beyond the
+//! parts' own inertia). A component freed from a fixed (anchored) body starts at rest and
+//! receives the impulses its fragments took during the step.
+
+use std::collections::BTreeMap;
+
+use glam::Vec3;
+use rapier3d::prelude::*;
+
+use crate::bonds::live::LiveObject;
+use crate::bonds::tags::{Kind, tag};
+
+/// Union-find with path halving.
+struct UnionFind(Vec<u32>);
+
+impl UnionFind {
+    fn find(&mut self, mut i: u32) -> u32 {
+        while self.0[i as usize] != i {
+            let p = self.0[self.0[i as usize] as usize];
+            self.0[i as usize] = p;
+            i = p;
+        }
+        i
+    }
+
+    fn union(&mut self, a: u32, b: u32) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra != rb {
+            // The smaller root wins, so roots are deterministic.
+            let (lo, hi) = if ra < rb { (ra, rb) } else { (rb, ra) };
+            self.0[hi as usize] = lo;
+        }
+    }
+}
+
+/// The connected components (fragment lists, ascending) of the fragments on `body`,
+/// ordered by their smallest fragment.
+pub(crate) fn components(live: &LiveObject, body: RigidBodyHandle) -> Vec<Vec<u32>> {
+    let n = live.body.len();
+    let mut uf = UnionFind((0..n as u32).collect());
+    for (b, bond) in live.prepared.fracture.bonds.iter().enumerate() {
+        if live.broken[b] {
+            continue;
+        }
+        if live.body[bond.a as usize] == Some(body) && live.body[bond.b as usize] == Some(body) {
+            uf.union(bond.a, bond.b);
+        }
+    }
+    let mut groups: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
+    for f in 0..n as u32 {
+        if live.body[f as usize] == Some(body) {
+            groups.entry(uf.find(f)).or_default().push(f);
+        }
+    }
+    groups.into_values().collect()
+}
+
+/// World centre of mass of a body from its local mass properties (valid right after
+/// `recompute_mass_properties_from_colliders`, before any step).
+pub(crate) fn world_com(rb: &RigidBody) -> Vec3 {
+    rb.position()
+        .transform_point(rb.mass_properties().local_mprops.local_com)
+}
+
+/// Splits `body` into its components; returns the new bodies (the first component keeps
+/// `body`). `impulses` are the impulses the fragments received this step.
+pub(crate) fn split(
+    world: &mut PhysicsWorld,
+    live: &mut LiveObject,
+    object: u32,
+    body: RigidBodyHandle,
+    impulses: &BTreeMap<u32, Vec3>,
+) -> Vec<RigidBodyHandle> {
+    let parts = components(live, body);
+    let Some(old) = world.bodies.get(body) else {
+        return Vec::new();
+    };
+    if parts.len() < 2 {
+        return Vec::new();
+    }
+    let pose = *old.position();
+    let was_dynamic = old.is_dynamic();
+    let (v, w, c) = (old.linvel(), old.angvel(), world_com(old));
+    let mut handles = vec![body];
+    for part in &parts[1..] {
+        let new = world.insert_body(
+            RigidBodyBuilder::dynamic()
+                .pose(pose)
+                .ccd_enabled(false)
+                .user_data(tag(Kind::Fragment, object, part[0])),
+        );
+        for &f in part {
+            for &co in &live.colliders[f as usize] {
+                world.colliders.set_parent(co, Some(new), &mut world.bodies);
+            }
+            live.body[f as usize] = Some(new);
+        }
+        handles.push(new);
+    }
+    for (part, &h) in parts.iter().zip(&handles) {
+        let anchored = part.iter().any(|&f| live.prepared.anchored[f as usize]);
+        let colliders = &world.colliders;
+        let Some(rb) = world.bodies.get_mut(h) else {
+            continue;
+        };
+        let ty = if anchored {
+            RigidBodyType::Fixed
+        } else {
+            RigidBodyType::Dynamic
+        };
+        if rb.body_type() != ty {
+            rb.set_body_type(ty, true);
+        }
+        rb.recompute_mass_properties_from_colliders(colliders);
+        if anchored {
+            continue;
+        }
+        if was_dynamic {
+            let ci = world_com(rb);
+            rb.set_linvel(v + w.cross(ci - c), true);
+            rb.set_angvel(w, true);
+        } else {
+            let j: Vec3 = part.iter().filter_map(|f| impulses.get(f)).copied().sum();
+            let m = rb.mass();
+            let v0 = if m > 0.0 { j / m } else { Vec3::ZERO };
+            rb.set_linvel(v0, true);
+            rb.set_angvel(Vec3::ZERO, true);
+        }
+    }
+    handles[1..].to_vec()
+}

@@ -1,0 +1,360 @@
+//! What the user asks for: breakable objects, projectiles and explosions, as plain data.
+
+use std::sync::Arc;
+
+use glam::{Quat, Vec3};
+use shatter_geom::DVec3;
+use shatter_geom::fracture::Fracture;
+
+use crate::error::SimError;
+use crate::material::{FractureMethod, Material, Pattern};
+
+/// How the fragments of a breakable object hold together.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum BondModel {
+    /// The thesis: one rigid body per fragment and a breakable fixed joint per bond.
+    ///
+    /// A joint breaks when the force it applied during the step, `|linear impulse| /
+    /// substep dt`, exceeds the object's break force.
+    Joints,
+    /// Connected fragments form one rigid body with a compound collider. Contact forces and
+    /// explosions load the bonds; a bond whose load in a step exceeds the break force
+    /// breaks and the body splits into its connected components.
+    #[default]
+    Clusters,
+}
+
+impl BondModel {
+    /// Parses `joints` or `clusters`.
+    pub fn from_name(name: &str) -> Option<BondModel> {
+        match name {
+            "joints" => Some(BondModel::Joints),
+            "clusters" => Some(BondModel::Clusters),
+            _ => None,
+        }
+    }
+
+    /// The model's name, as parsed by [`BondModel::from_name`].
+    pub fn name(self) -> &'static str {
+        match self {
+            BondModel::Joints => "joints",
+            BondModel::Clusters => "clusters",
+        }
+    }
+}
+
+/// Parameters of a fracture computed by `shatter_geom::fracture` (the thesis's object
+/// parameters plus the method).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FractureParams {
+    /// Method; `None` uses the material's default.
+    pub method: Option<FractureMethod>,
+    /// Voronoi seed pattern; `None` uses the material's default.
+    pub pattern: Option<Pattern>,
+    /// Number of pieces (Voronoi cells, slices).
+    pub pieces: u32,
+    /// The thesis's "Random Vertices".
+    pub random_vertices: u32,
+    /// The thesis's "Skip": take every (skip+1)-th surface vertex.
+    pub skip: u32,
+    /// The thesis's "Center": also add the centre point.
+    pub center: bool,
+    /// Random seed.
+    pub seed: u64,
+    /// Grid cells for [`FractureMethod::Grid`].
+    pub grid: [u32; 3],
+}
+
+impl Default for FractureParams {
+    fn default() -> Self {
+        FractureParams {
+            method: None,
+            pattern: None,
+            pieces: 32,
+            random_vertices: 50,
+            skip: 0,
+            center: false,
+            seed: 1,
+            grid: [4, 4, 4],
+        }
+    }
+}
+
+/// Where an object's fragments come from.
+#[derive(Debug, Clone)]
+pub enum FractureSource {
+    /// An already fractured object (in its own frame, before scaling).
+    Prebuilt(Arc<Fracture>),
+    /// A built-in shape (`cube`, `capsule`, `cylinder`, `sphere`, `torus`, `bird`) fractured
+    /// with `params`. A `cube` with [`FractureMethod::Grid`] is cut into a brick grid.
+    Shape {
+        /// Shape name.
+        name: String,
+        /// Fracture parameters.
+        params: FractureParams,
+    },
+    /// A mesh file (OBJ, STL, glTF) fractured with `params`.
+    MeshFile {
+        /// Path to the file.
+        path: String,
+        /// Fracture parameters.
+        params: FractureParams,
+    },
+}
+
+/// A breakable object: a fracture, a material, a transform and the thesis's parameters.
+#[derive(Debug, Clone)]
+pub struct ObjectSpec {
+    /// A label (shown by the app; not required to be unique).
+    pub name: String,
+    /// The fragments.
+    pub source: FractureSource,
+    /// Material (density, friction, restitution, default strength).
+    pub material: Material,
+    /// Break force of each bond in newtons; `None` uses `material.strength`.
+    pub break_force: Option<f32>,
+    /// Position of the object's origin.
+    pub position: Vec3,
+    /// Orientation.
+    pub rotation: Quat,
+    /// Scale, applied to the geometry before the colliders are built.
+    pub scale: Vec3,
+    /// Colour (linear RGB, 0..=1) for the renderer.
+    pub color: [f32; 3],
+    /// The thesis's "Last": the object is removed this many seconds after Start.
+    pub last: Option<f32>,
+    /// Bond model; `None` uses the world's default.
+    pub bond_model: Option<BondModel>,
+    /// Bonds the fragments touching the object's lowest face to the world (walls).
+    pub anchored: bool,
+}
+
+impl ObjectSpec {
+    /// An object from a prebuilt fracture with default material, placed at `position`.
+    pub fn from_fracture(fracture: Fracture, position: Vec3) -> ObjectSpec {
+        ObjectSpec {
+            name: "object".to_string(),
+            source: FractureSource::Prebuilt(Arc::new(fracture)),
+            material: Material::default(),
+            break_force: None,
+            position,
+            rotation: Quat::IDENTITY,
+            scale: Vec3::ONE,
+            color: [0.7, 0.7, 0.7],
+            last: None,
+            bond_model: None,
+            anchored: false,
+        }
+    }
+
+    /// The break force in effect.
+    pub fn effective_break_force(&self) -> f32 {
+        self.break_force.unwrap_or(self.material.strength)
+    }
+
+    /// Checks the numeric parameters; `key` prefixes the errors (e.g. `objects[1]`).
+    pub fn validate(&self, key: &str) -> Result<(), SimError> {
+        self.material.validate(&format!("{key}.material"))?;
+        if let Some(f) = self.break_force
+            && !(f.is_finite() && f > 0.0)
+        {
+            return Err(SimError::invalid(
+                format!("{key}.break_force"),
+                format!("must be a positive number, got {f}"),
+            ));
+        }
+        if !(self.scale.is_finite() && self.scale.min_element() > 0.0) {
+            return Err(SimError::invalid(
+                format!("{key}.scale"),
+                format!("every component must be positive, got {:?}", self.scale),
+            ));
+        }
+        if !self.position.is_finite() {
+            return Err(SimError::invalid(
+                format!("{key}.position"),
+                "must be finite",
+            ));
+        }
+        if !self.rotation.is_finite() {
+            return Err(SimError::invalid(
+                format!("{key}.rotation"),
+                "must be finite",
+            ));
+        }
+        if let Some(t) = self.last
+            && !(t.is_finite() && t > 0.0)
+        {
+            return Err(SimError::invalid(
+                format!("{key}.last"),
+                format!("must be a positive number of seconds, got {t}"),
+            ));
+        }
+        check_color(self.color, &format!("{key}.color"))?;
+        match &self.source {
+            FractureSource::Prebuilt(_) => {}
+            FractureSource::Shape { params, .. } | FractureSource::MeshFile { params, .. } => {
+                if params.pieces == 0 {
+                    return Err(SimError::invalid(
+                        format!("{key}.pieces"),
+                        "must be at least 1",
+                    ));
+                }
+                if params.grid.contains(&0) {
+                    return Err(SimError::invalid(
+                        format!("{key}.grid"),
+                        "every cell count must be at least 1",
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Shape of a projectile.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ProjectileShape {
+    /// A cube with edge `size`.
+    Cube,
+    /// A sphere of diameter `size`.
+    Sphere,
+    /// A capsule along its axis, total height `size`, radius `size / 4`.
+    Capsule,
+    /// A cylinder of height `size` and diameter `size`.
+    Cylinder,
+    /// The convex hull of these points (a custom mesh's vertices), scaled by `size`.
+    Custom(Vec<DVec3>),
+}
+
+impl ProjectileShape {
+    /// Parses `cube`, `sphere`, `capsule`, `cylinder` (custom meshes come with points).
+    pub fn from_name(name: &str) -> Option<ProjectileShape> {
+        match name {
+            "cube" => Some(ProjectileShape::Cube),
+            "sphere" => Some(ProjectileShape::Sphere),
+            "capsule" => Some(ProjectileShape::Capsule),
+            "cylinder" => Some(ProjectileShape::Cylinder),
+            _ => None,
+        }
+    }
+}
+
+/// A projectile, fired from `from` towards `to` (the thesis's Fire panel).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProjectileSpec {
+    /// Shape.
+    pub shape: ProjectileShape,
+    /// Size in metres (see [`ProjectileShape`]).
+    pub size: f32,
+    /// Density in kg/m³.
+    pub density: f32,
+    /// Speed in m/s.
+    pub speed: f32,
+    /// Colour.
+    pub color: [f32; 3],
+    /// Lifetime in seconds after firing; `None` = forever.
+    pub last: Option<f32>,
+    /// Start point.
+    pub from: Vec3,
+    /// Aim point.
+    pub to: Vec3,
+}
+
+impl Default for ProjectileSpec {
+    fn default() -> Self {
+        ProjectileSpec {
+            shape: ProjectileShape::Sphere,
+            size: 0.3,
+            density: 7800.0,
+            speed: 30.0,
+            color: [0.2, 0.2, 0.2],
+            last: Some(10.0),
+            from: Vec3::new(0.0, 1.0, 10.0),
+            to: Vec3::new(0.0, 1.0, 0.0),
+        }
+    }
+}
+
+impl ProjectileSpec {
+    /// Checks the parameters; `key` prefixes the errors.
+    pub fn validate(&self, key: &str) -> Result<(), SimError> {
+        for (v, name) in [(self.size, "size"), (self.density, "density")] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(SimError::invalid(
+                    format!("{key}.{name}"),
+                    format!("must be a positive number, got {v}"),
+                ));
+            }
+        }
+        if !(self.speed.is_finite() && self.speed >= 0.0) {
+            return Err(SimError::invalid(
+                format!("{key}.speed"),
+                format!("must be >= 0, got {}", self.speed),
+            ));
+        }
+        if let Some(t) = self.last
+            && !(t.is_finite() && t > 0.0)
+        {
+            return Err(SimError::invalid(
+                format!("{key}.last"),
+                format!("must be a positive number of seconds, got {t}"),
+            ));
+        }
+        if !(self.from.is_finite() && self.to.is_finite()) || (self.to - self.from).length() < 1e-6
+        {
+            return Err(SimError::invalid(
+                format!("{key}.to"),
+                "must be finite and differ from `from`",
+            ));
+        }
+        check_color(self.color, &format!("{key}.color"))
+    }
+}
+
+/// An explosion (the thesis's Add Force panel): an impulse of `power` (N·s) at the centre,
+/// falling off linearly to zero at `radius`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ExplosionSpec {
+    /// Centre.
+    pub position: Vec3,
+    /// Radius in metres.
+    pub radius: f32,
+    /// Impulse at the centre, in N·s.
+    pub power: f32,
+}
+
+impl ExplosionSpec {
+    /// Checks the parameters; `key` prefixes the errors.
+    pub fn validate(&self, key: &str) -> Result<(), SimError> {
+        if !(self.radius.is_finite() && self.radius > 0.0) {
+            return Err(SimError::invalid(
+                format!("{key}.radius"),
+                format!("must be a positive number, got {}", self.radius),
+            ));
+        }
+        if !(self.power.is_finite() && self.power >= 0.0) {
+            return Err(SimError::invalid(
+                format!("{key}.power"),
+                format!("must be >= 0, got {}", self.power),
+            ));
+        }
+        if !self.position.is_finite() {
+            return Err(SimError::invalid(
+                format!("{key}.position"),
+                "must be finite",
+            ));
+        }
+        Ok(())
+    }
+}
+
+fn check_color(c: [f32; 3], key: &str) -> Result<(), SimError> {
+    if c.iter().all(|v| (0.0..=1.0).contains(v)) {
+        Ok(())
+    } else {
+        Err(SimError::invalid(
+            key,
+            format!("components must be in 0..=1, got {c:?}"),
+        ))
+    }
+}

@@ -1,0 +1,143 @@
+//! Fractures built without the fracture algorithms: a grid of box fragments ("bricks").
+//!
+//! Used by the tests and benchmarks, and by scenes through the `grid` method.
+
+use shatter_geom::fracture::{Bond, Fracture, Fragment};
+use shatter_geom::{DMat3, DVec3, TriMesh};
+
+/// A box of `size` (full extents, centred on the origin) cut into `cells[0] × cells[1] ×
+/// cells[2]` equal boxes, bonded across every shared face.
+///
+/// Fragment `i` sits at grid cell `(x, y, z)` with `i = x + nx·(y + ny·z)`. Bonds are
+/// sorted by `(a, b)` with `a < b`, normals point from `a` to `b`.
+///
+/// ```
+/// use shatter_sim::testing::box_grid_fracture;
+/// let f = box_grid_fracture([20, 10, 10], [4.0, 2.0, 2.0].into());
+/// assert_eq!(f.fragments.len(), 2000);
+/// // 19·10·10 + 20·9·10 + 20·10·9 shared faces.
+/// assert_eq!(f.bonds.len(), 1900 + 1800 + 1800);
+/// ```
+pub fn box_grid_fracture(cells: [u32; 3], size: DVec3) -> Fracture {
+    let [nx, ny, nz] = cells.map(|c| c.max(1));
+    let cell = size / DVec3::new(nx as f64, ny as f64, nz as f64);
+    let origin = -size / 2.0;
+    let index = |x: u32, y: u32, z: u32| x + nx * (y + ny * z);
+    let mut fragments = Vec::with_capacity((nx * ny * nz) as usize);
+    for z in 0..nz {
+        for y in 0..ny {
+            for x in 0..nx {
+                let lo = origin + cell * DVec3::new(x as f64, y as f64, z as f64);
+                let on_boundary = [
+                    x == 0,
+                    x == nx - 1,
+                    y == 0,
+                    y == ny - 1,
+                    z == 0,
+                    z == nz - 1,
+                ];
+                fragments.push(box_fragment(lo, lo + cell, on_boundary));
+            }
+        }
+    }
+    let mut bonds = Vec::new();
+    for z in 0..nz {
+        for y in 0..ny {
+            for x in 0..nx {
+                let a = index(x, y, z);
+                let centre = fragments[a as usize].centroid;
+                let mut push = |b: u32, axis: DVec3, area: f64| {
+                    bonds.push(Bond {
+                        a,
+                        b,
+                        area,
+                        centroid: centre + axis * (cell * 0.5),
+                        normal: axis,
+                    });
+                };
+                if x + 1 < nx {
+                    push(index(x + 1, y, z), DVec3::X, cell.y * cell.z);
+                }
+                if y + 1 < ny {
+                    push(index(x, y + 1, z), DVec3::Y, cell.x * cell.z);
+                }
+                if z + 1 < nz {
+                    push(index(x, y, z + 1), DVec3::Z, cell.x * cell.y);
+                }
+            }
+        }
+    }
+    Fracture {
+        fragments,
+        bonds,
+        ..Default::default()
+    }
+}
+
+/// One axis-aligned box fragment from `lo` to `hi`. `on_boundary` flags the faces
+/// −x, +x, −y, +y, −z, +z that lie on the object's surface.
+pub fn box_fragment(lo: DVec3, hi: DVec3, on_boundary: [bool; 6]) -> Fragment {
+    let corners: Vec<DVec3> = (0..8)
+        .map(|i| {
+            DVec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            )
+        })
+        .collect();
+    // Two outward triangles per face, faces in the order −x, +x, −y, +y, −z, +z.
+    let faces: [[u32; 4]; 6] = [
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+    ];
+    let mut triangles = Vec::with_capacity(12);
+    let mut interior = Vec::with_capacity(12);
+    for (face, [a, b, c, d]) in faces.iter().enumerate() {
+        triangles.push([*a, *b, *c]);
+        triangles.push([*a, *c, *d]);
+        interior.extend([!on_boundary[face]; 2]);
+    }
+    let e = hi - lo;
+    let volume = e.x * e.y * e.z;
+    let inertia = DMat3::from_diagonal(
+        DVec3::new(
+            e.y * e.y + e.z * e.z,
+            e.x * e.x + e.z * e.z,
+            e.x * e.x + e.y * e.y,
+        ) * (volume / 12.0),
+    );
+    Fragment {
+        mesh: TriMesh::new(corners.clone(), triangles),
+        interior,
+        convex_pieces: vec![corners],
+        volume,
+        centroid: (lo + hi) / 2.0,
+        inertia,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_fragments_are_outward_and_fill_the_box() {
+        let f = box_grid_fracture([3, 2, 4], DVec3::new(3.0, 1.0, 2.0));
+        let total: f64 = f.fragments.iter().map(|g| g.mesh.signed_volume()).sum();
+        assert!((total - 6.0).abs() < 1e-12);
+        for g in &f.fragments {
+            assert!((g.mesh.signed_volume() - g.volume).abs() < 1e-12);
+            assert!((g.mesh.centroid() - g.centroid).length() < 1e-12);
+        }
+        for b in &f.bonds {
+            assert!(b.a < b.b);
+            let d = f.fragments[b.b as usize].centroid - f.fragments[b.a as usize].centroid;
+            assert!((d.normalize() - b.normal).length() < 1e-12);
+        }
+    }
+}

@@ -1,0 +1,10 @@
+//! The simulation world: controls, stepping, queries.
+
+mod query;
+mod settings;
+mod state;
+mod step;
+
+pub use query::ProjectileView;
+pub use settings::{SimEvent, Stats, WorldSettings};
+pub use state::{ObjectId, RunState, World};

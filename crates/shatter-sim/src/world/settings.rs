@@ -1,0 +1,82 @@
+//! World settings and the statistics reported after each step.
+
+use glam::Vec3;
+
+use crate::object::BondModel;
+
+/// Global settings of a simulation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WorldSettings {
+    /// Gravity (m/s²).
+    pub gravity: Vec3,
+    /// Fixed time step in seconds (default 1/60).
+    pub dt: f32,
+    /// Bond model for objects that do not choose one.
+    pub bond_model: BondModel,
+    /// A static ground plane at y = 0 (a thin box, `ground_size` wide).
+    pub ground: bool,
+    /// Half-extent of the ground box in x and z.
+    pub ground_size: f32,
+    /// Friction of the ground.
+    pub ground_friction: f32,
+    /// Keep at most this many debris bodies (single fragments broken loose); the oldest are
+    /// removed first. `None`: no cap.
+    pub max_debris: Option<usize>,
+    /// Linear speed (m/s) above which a body counts as diverging and is removed.
+    pub max_speed: f32,
+    /// Solver iterations (Rapier substeps) per step.
+    pub solver_iterations: usize,
+}
+
+impl Default for WorldSettings {
+    fn default() -> Self {
+        WorldSettings {
+            gravity: Vec3::new(0.0, -9.81, 0.0),
+            dt: 1.0 / 60.0,
+            bond_model: BondModel::Clusters,
+            ground: true,
+            ground_size: 100.0,
+            ground_friction: 0.8,
+            max_debris: None,
+            max_speed: 1000.0,
+            solver_iterations: 4,
+        }
+    }
+}
+
+/// Statistics after the last step.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Stats {
+    /// Steps since start.
+    pub steps: u64,
+    /// Simulated time since start (s).
+    pub time: f64,
+    /// Rigid bodies (objects and projectiles; the ground is not counted).
+    pub bodies: usize,
+    /// Fragments with a body.
+    pub fragments: usize,
+    /// Bonds of all objects.
+    pub bonds_total: usize,
+    /// Broken bonds.
+    pub bonds_broken: usize,
+    /// Bodies removed because their state diverged (NaN or runaway speed).
+    pub diverged: usize,
+    /// Debris bodies removed by the cap.
+    pub debris_removed: usize,
+    /// Wall-clock milliseconds of the last step.
+    pub last_step_ms: f64,
+}
+
+/// Something noteworthy that happened during a step.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SimEvent {
+    /// A body's state became non-finite or its speed ran away; it was removed.
+    Diverged {
+        /// The object it belonged to (`None` for a projectile).
+        object: Option<u32>,
+        /// What was wrong.
+        reason: String,
+    },
+    /// An object reached the end of its lifetime and was removed.
+    Expired(u32),
+}

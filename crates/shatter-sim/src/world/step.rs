@@ -1,0 +1,359 @@
+//! One fixed step: timed actions, Rapier, bond breaking, lifetimes, the NaN guard and the
+//! debris cap.
+
+use std::collections::BTreeMap;
+use std::sync::Mutex;
+use std::time::Instant;
+
+use glam::{Quat, Vec3};
+use rapier3d::prelude::*;
+
+use crate::bonds::clusters::{self, Loads};
+use crate::bonds::tags::{Kind, tag, untag};
+use crate::bonds::{joints, split};
+use crate::object::{BondModel, ExplosionSpec, ProjectileShape, ProjectileSpec};
+use crate::world::settings::SimEvent;
+use crate::world::state::{Action, ObjectId, Projectile, RunState, World};
+
+/// One contact-force report: the two colliders, the impulse on `collider2` and the force.
+#[derive(Debug, Clone, Copy)]
+struct ContactHit {
+    collider1: ColliderHandle,
+    collider2: ColliderHandle,
+    impulse: Vec3,
+    force: f32,
+}
+
+/// Collects Rapier's contact-force events during a step.
+#[derive(Default)]
+struct HitCollector(Mutex<Vec<ContactHit>>);
+
+impl EventHandler for HitCollector {
+    fn handle_collision_event(
+        &self,
+        _bodies: &RigidBodySet,
+        _colliders: &ColliderSet,
+        _event: CollisionEvent,
+        _contact_pair: Option<&ContactPair>,
+    ) {
+    }
+
+    fn handle_contact_force_event(
+        &self,
+        _dt: Real,
+        _bodies: &RigidBodySet,
+        _colliders: &ColliderSet,
+        contact_pair: &ContactPair,
+        total_force_magnitude: Real,
+    ) {
+        let hit = ContactHit {
+            collider1: contact_pair.collider1,
+            collider2: contact_pair.collider2,
+            impulse: contact_pair.total_impulse(),
+            force: total_force_magnitude,
+        };
+        if let Ok(mut hits) = self.0.lock() {
+            hits.push(hit);
+        }
+    }
+
+    fn handle_soft_body_tear_event(&self, _soft_bodies: &SoftBodySet, _event: &SoftBodyTearEvent) {}
+}
+
+impl World {
+    /// Advances one fixed step if running; returns whether it did.
+    pub fn step(&mut self) -> bool {
+        if self.state != RunState::Running {
+            return false;
+        }
+        let t0 = Instant::now();
+        let time = self.stats.time;
+        while let Some((at, action)) = self.schedule.get(self.next_action).cloned() {
+            if at > time + 1e-9 {
+                break;
+            }
+            self.next_action += 1;
+            match action {
+                Action::Fire(spec) => self.fire(spec),
+                Action::Explode(spec) => self.explode(spec),
+            }
+        }
+        let hits = HitCollector::default();
+        self.physics.step_with_events(&(), &hits);
+        self.stats.steps += 1;
+        self.stats.time = self.stats.steps as f64 * self.settings.dt as f64;
+        let hits = hits.0.into_inner().unwrap_or_default();
+        self.break_joints();
+        self.break_clusters(&hits);
+        self.expire();
+        self.guard();
+        self.cap_debris();
+        self.update_counts();
+        self.stats.last_step_ms = t0.elapsed().as_secs_f64() * 1e3;
+        true
+    }
+
+    fn break_joints(&mut self) {
+        for record in self.objects.values_mut() {
+            let Some(live) = record.live.as_mut() else {
+                continue;
+            };
+            if live.model == BondModel::Joints {
+                joints::break_overloaded(&mut self.physics, live);
+            }
+        }
+    }
+
+    fn break_clusters(&mut self, hits: &[ContactHit]) {
+        let mut loads: BTreeMap<u32, Loads> = BTreeMap::new();
+        for hit in hits {
+            for (collider, sign) in [(hit.collider1, -1.0), (hit.collider2, 1.0)] {
+                let Some(co) = self.physics.colliders.get(collider) else {
+                    continue;
+                };
+                let Some((Kind::Fragment, object, f)) = untag(co.user_data) else {
+                    continue;
+                };
+                let Some(live) = self
+                    .objects
+                    .get(&ObjectId(object))
+                    .and_then(|r| r.live.as_ref())
+                else {
+                    continue;
+                };
+                if live.model != BondModel::Clusters {
+                    continue;
+                }
+                let entry = loads.entry(object).or_default();
+                clusters::load_from_contact(
+                    &self.physics,
+                    live,
+                    f,
+                    hit.force,
+                    hit.impulse * sign,
+                    entry,
+                );
+            }
+        }
+        self.apply_loads(loads);
+    }
+
+    /// Breaks overloaded bonds and splits the bodies they held.
+    pub(crate) fn apply_loads(&mut self, loads: BTreeMap<u32, Loads>) {
+        for (object, loads) in loads {
+            let Some(live) = self
+                .objects
+                .get_mut(&ObjectId(object))
+                .and_then(|r| r.live.as_mut())
+            else {
+                continue;
+            };
+            let bodies = clusters::break_loaded(live, &loads);
+            for body in bodies {
+                let new = split::split(&mut self.physics, live, object, body, &loads.impulses);
+                for h in std::iter::once(body).chain(new) {
+                    let single = live.body.iter().filter(|b| **b == Some(h)).count() == 1;
+                    let dynamic = self.physics.bodies.get(h).is_some_and(|rb| rb.is_dynamic());
+                    if single && dynamic && !self.debris.contains(&(object, h)) {
+                        self.debris.push_back((object, h));
+                    }
+                }
+            }
+        }
+    }
+
+    /// Fires a projectile now.
+    pub fn fire(&mut self, spec: ProjectileSpec) {
+        let index = self.projectiles.len() as u32;
+        let dir = (spec.to - spec.from).normalize_or(Vec3::NEG_Z);
+        let rotation = Quat::from_rotation_arc(Vec3::Y, dir);
+        let s = spec.size;
+        let collider = match &spec.shape {
+            ProjectileShape::Cube => ColliderBuilder::cuboid(s / 2.0, s / 2.0, s / 2.0),
+            ProjectileShape::Sphere => ColliderBuilder::ball(s / 2.0),
+            ProjectileShape::Capsule => ColliderBuilder::capsule_y(s / 4.0, s / 4.0),
+            ProjectileShape::Cylinder => ColliderBuilder::cylinder(s / 2.0, s / 2.0),
+            ProjectileShape::Custom(points) => {
+                let pts: Vec<Vec3> = points.iter().map(|p| p.as_vec3() * s).collect();
+                ColliderBuilder::convex_hull(&pts).unwrap_or_else(|| ColliderBuilder::ball(s / 2.0))
+            }
+        };
+        let body = self.physics.insert_body(
+            RigidBodyBuilder::dynamic()
+                .pose(Pose::from_parts(spec.from, rotation))
+                .linvel(dir * spec.speed)
+                .ccd_enabled(true)
+                .user_data(tag(Kind::Projectile, index, 0)),
+        );
+        self.physics.insert_collider(
+            collider
+                .density(spec.density)
+                .friction(0.5)
+                .restitution(0.1)
+                .user_data(tag(Kind::Projectile, index, 0)),
+            Some(body),
+        );
+        self.projectiles.push(Projectile {
+            spec,
+            body: Some(body),
+            fired_at: self.stats.time,
+        });
+        self.update_counts();
+    }
+
+    /// Sets off an explosion now: cluster bonds in the radius are loaded (and may break),
+    /// then every dynamic body whose centre of mass is in the radius gets an impulse
+    /// `power·(1 − d/radius)` pointing away from the centre.
+    pub fn explode(&mut self, spec: ExplosionSpec) {
+        let mut loads: BTreeMap<u32, Loads> = BTreeMap::new();
+        for (id, record) in &self.objects {
+            let Some(live) = record.live.as_ref() else {
+                continue;
+            };
+            if live.model == BondModel::Clusters {
+                let entry = loads.entry(id.0).or_default();
+                clusters::load_from_explosion(
+                    &self.physics,
+                    live,
+                    spec.position,
+                    spec.radius,
+                    spec.power,
+                    self.settings.dt,
+                    entry,
+                );
+            }
+        }
+        self.apply_loads(loads);
+        let ground = self.ground;
+        let mut pushes = Vec::new();
+        for (h, rb) in self.physics.bodies.iter() {
+            if Some(h) == ground || !rb.is_dynamic() {
+                continue;
+            }
+            let c = split::world_com(rb);
+            let d = c - spec.position;
+            let x = d.length();
+            if x < spec.radius {
+                let dir = if x > 1e-6 { d / x } else { Vec3::Y };
+                pushes.push((h, dir * spec.power * (1.0 - x / spec.radius)));
+            }
+        }
+        for (h, impulse) in pushes {
+            if let Some(rb) = self.physics.bodies.get_mut(h) {
+                rb.apply_impulse(impulse, true);
+            }
+        }
+        self.update_counts();
+    }
+
+    /// Removes objects and projectiles whose lifetime ended.
+    fn expire(&mut self) {
+        let time = self.stats.time;
+        let expired: Vec<ObjectId> = self
+            .objects
+            .iter()
+            .filter(|(_, r)| r.live.is_some() && r.spec.last.is_some_and(|t| time >= t as f64))
+            .map(|(id, _)| *id)
+            .collect();
+        for id in expired {
+            self.remove_live(id);
+            self.events.push(SimEvent::Expired(id.0));
+        }
+        for p in &mut self.projectiles {
+            if let (Some(body), Some(last)) = (p.body, p.spec.last)
+                && time >= p.fired_at + last as f64
+            {
+                self.physics.remove_body(body);
+                p.body = None;
+            }
+        }
+    }
+
+    /// Removes bodies whose pose or velocity is not finite or whose speed ran away.
+    fn guard(&mut self) {
+        let max_speed = self.settings.max_speed;
+        let mut bad = Vec::new();
+        for (h, rb) in self.physics.bodies.iter() {
+            let p = rb.position();
+            let finite = p.translation.is_finite()
+                && p.rotation.is_finite()
+                && rb.linvel().is_finite()
+                && rb.angvel().is_finite();
+            if !finite {
+                bad.push((h, rb.user_data, "non-finite state".to_string()));
+            } else if rb.linvel().length() > max_speed {
+                bad.push((
+                    h,
+                    rb.user_data,
+                    format!("speed {} m/s", rb.linvel().length()),
+                ));
+            } else if !rb.is_enabled() {
+                bad.push((
+                    h,
+                    rb.user_data,
+                    "disabled by Rapier's quarantine".to_string(),
+                ));
+            }
+        }
+        for (h, data, reason) in bad {
+            if Some(h) == self.ground {
+                continue;
+            }
+            let object = match untag(data) {
+                Some((Kind::Fragment, object, _)) => {
+                    if let Some(live) = self
+                        .objects
+                        .get_mut(&ObjectId(object))
+                        .and_then(|r| r.live.as_mut())
+                    {
+                        for f in 0..live.body.len() {
+                            if live.body[f] == Some(h) {
+                                live.body[f] = None;
+                                live.colliders[f].clear();
+                            }
+                        }
+                    }
+                    Some(object)
+                }
+                Some((Kind::Projectile, index, _)) => {
+                    if let Some(p) = self.projectiles.get_mut(index as usize) {
+                        p.body = None;
+                    }
+                    None
+                }
+                _ => None,
+            };
+            self.physics.remove_body(h);
+            self.stats.diverged += 1;
+            self.events.push(SimEvent::Diverged { object, reason });
+        }
+    }
+
+    /// Removes the oldest debris beyond the cap.
+    fn cap_debris(&mut self) {
+        let Some(cap) = self.settings.max_debris else {
+            return;
+        };
+        self.debris
+            .retain(|(_, h)| self.physics.bodies.contains(*h));
+        while self.debris.len() > cap {
+            let Some((object, h)) = self.debris.pop_front() else {
+                break;
+            };
+            if let Some(live) = self
+                .objects
+                .get_mut(&ObjectId(object))
+                .and_then(|r| r.live.as_mut())
+            {
+                for f in 0..live.body.len() {
+                    if live.body[f] == Some(h) {
+                        live.body[f] = None;
+                        live.colliders[f].clear();
+                    }
+                }
+            }
+            self.physics.remove_body(h);
+            self.stats.debris_removed += 1;
+        }
+    }
+}
