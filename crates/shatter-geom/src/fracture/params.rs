@@ -13,6 +13,8 @@ pub enum Placement {
     Interior,
     /// The thesis's scheme: pick a random point `p` of the growing list, draw
     /// `d = uniform(0, |p − c|)` and add `c + unit(c − p)·d` (`c` = centre of mass).
+    /// A point outside the mesh (possible for concave meshes, e.g. a torus, whose
+    /// centre is in the hole) is redrawn.
     Thesis,
 }
 

@@ -45,10 +45,20 @@ pub(crate) fn tetra_points(mesh: &Piece, opt: &TetraOptions, rng: &mut ChaCha8Rn
             }
         }
         Placement::Thesis => {
+            // The thesis's scheme, except that a point it puts outside the mesh (which
+            // happens for concave or asymmetric meshes) is redrawn, a bounded number of
+            // times, so no fragment pokes out of the object.
+            let tester = InsideTester::new(mesh);
             for _ in 0..opt.random_vertices {
-                let p = pts[rng.random_range(0..pts.len())];
-                let d = rng.random_range(0.0..=1.0) * (p - centre).length();
-                pts.push(centre + (centre - p).normalize_or_zero() * d);
+                for _ in 0..64 {
+                    let p = pts[rng.random_range(0..pts.len())];
+                    let d = rng.random_range(0.0..=1.0) * (p - centre).length();
+                    let q = centre + (centre - p).normalize_or_zero() * d;
+                    if tester.contains(q) {
+                        pts.push(q);
+                        break;
+                    }
+                }
             }
         }
     }

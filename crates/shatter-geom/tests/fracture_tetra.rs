@@ -1,0 +1,196 @@
+//! The thesis's tetra method on every built-in shape and the L-block: fragments are
+//! (groups of) Delaunay tetrahedra, closed and outward, no slivers, bonds on shared faces.
+#![allow(clippy::unwrap_used)]
+
+#[path = "fracture_shapes.rs"]
+mod shapes;
+
+use shapes::*;
+use shatter_geom::delaunay::tetrahedralize;
+use shatter_geom::fracture::{
+    FractureParams, Method, Placement, SLIVER_QUALITY, SLIVER_VOLUME_FRACTION, fracture,
+};
+use shatter_geom::{TriMesh, shapes as builtin};
+
+fn tetra(
+    random_vertices: usize,
+    skip: usize,
+    center: bool,
+    placement: Placement,
+) -> FractureParams {
+    FractureParams {
+        method: Method::Tetra {
+            random_vertices,
+            skip,
+            center,
+            placement,
+        },
+        seed: 21,
+    }
+}
+
+fn convex(name: &str) -> bool {
+    matches!(name, "cube" | "capsule" | "cylinder" | "sphere")
+}
+
+#[test]
+fn thesis_case_cube_with_500_random_points() {
+    let cube = builtin::cube();
+    for placement in [Placement::Interior, Placement::Thesis] {
+        let fr = fracture(&cube, &tetra(500, 0, true, placement)).unwrap();
+        let what = format!("cube 500 {placement:?}");
+        // The cube is convex and every point lies in it: the tetrahedra fill it.
+        check_fracture(&cube, 1.0, &fr, 1e-9, &what);
+        // (The thesis's points crowd the centre, where many small tetrahedra merge.)
+        assert!(fr.fragments.len() > 300, "{what}: {}", fr.fragments.len());
+        // A lone tetrahedron is flat-shaded: 4 triangles, 12 vertices.
+        let lone = fr
+            .fragments
+            .iter()
+            .filter(|f| f.mesh.triangles.len() == 4)
+            .count();
+        assert!(
+            lone > fr.fragments.len() / 2,
+            "{what}: {lone} lone tetrahedra"
+        );
+        for f in fr.fragments.iter().filter(|f| f.mesh.triangles.len() == 4) {
+            assert_eq!(f.mesh.positions.len(), 12);
+        }
+    }
+}
+
+#[test]
+fn every_shape_every_placement() {
+    let mut meshes: Vec<(String, TriMesh)> = builtin::NAMES
+        .iter()
+        .map(|n| (n.to_string(), builtin::by_name(n).unwrap()))
+        .collect();
+    meshes.push(("l-block".into(), l_block()));
+    for (name, mesh) in &meshes {
+        let volume = mesh.volume();
+        for placement in [Placement::Interior, Placement::Thesis] {
+            for (n, skip, center) in [(100, 0, true), (60, 1, false)] {
+                let what = format!("{name} {placement:?} n={n} skip={skip} center={center}");
+                let fr = fracture(mesh, &tetra(n, skip, center, placement))
+                    .unwrap_or_else(|e| panic!("{what}: {e}"));
+                if convex(name) && placement == Placement::Interior && skip == 0 {
+                    // All surface vertices and points inside a convex mesh: the tetrahedra
+                    // tile its vertices' hull, the mesh itself.
+                    check_fracture(mesh, volume, &fr, 1e-9, &what);
+                } else if convex(name) {
+                    // Skipped corners or thesis points: the hull of the points, inside the
+                    // mesh (the volume check is the one below).
+                    check_fracture_with(mesh, volume, &fr, 1.0, true, &what);
+                    assert!(fr.total_volume() <= volume * (1.0 + 1e-9), "{what}");
+                } else if skip == 0 {
+                    // Concave: tetrahedra whose centroid is outside are gone; faces may cut
+                    // corners, the volume stays close.
+                    check_fracture_with(mesh, volume, &fr, 0.35, false, &what);
+                } else {
+                    check_fracture_with(mesh, volume, &fr, 1.0, false, &what);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn concave_meshes_keep_exactly_the_inside_tetrahedra() {
+    // With no random points and no centre the points are the welded surface vertices,
+    // so the kept tetrahedra can be recomputed here.
+    for (name, mesh) in [
+        ("l-block", l_block()),
+        ("torus", builtin::torus(0.5, 0.2, 16, 8)),
+        ("bird", builtin::bird()),
+    ] {
+        let fr = fracture(&mesh, &tetra(0, 0, false, Placement::Interior)).unwrap();
+        let welded = mesh.welded();
+        let del = tetrahedralize(&welded.positions).unwrap();
+        let mut kept = 0.0;
+        let mut count = 0;
+        for t in &del.tetrahedra {
+            let p = t.map(|i| welded.positions[i as usize]);
+            let c = (p[0] + p[1] + p[2] + p[3]) / 4.0;
+            if welded.winding_number(c) > 0.5 {
+                kept += (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])) / 6.0;
+                count += 1;
+            }
+        }
+        assert!(count > 0);
+        let total = fr.total_volume();
+        // Dropped isolated slivers are reported; they are below the sliver threshold.
+        let slack = if fr.warnings.is_empty() {
+            1e-9 * kept
+        } else {
+            SLIVER_VOLUME_FRACTION * mesh.volume() * count as f64
+        };
+        assert!(
+            (total - kept).abs() <= slack,
+            "{name}: {total} vs kept {kept}"
+        );
+        // Concavity is kept: the result is smaller than the points' hull.
+        let hull: f64 = del
+            .tetrahedra
+            .iter()
+            .map(|t| {
+                let p = t.map(|i| welded.positions[i as usize]);
+                (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])) / 6.0
+            })
+            .sum();
+        assert!(total < 0.99 * hull, "{name}: {total} vs hull {hull}");
+        check_fracture_with(&mesh, mesh.volume(), &fr, 0.35, false, name);
+    }
+}
+
+#[test]
+fn no_sliver_reaches_the_physics() {
+    let cube = builtin::cube();
+    let fr = fracture(&cube, &tetra(500, 0, true, Placement::Thesis)).unwrap();
+    for (i, f) in fr.fragments.iter().enumerate() {
+        assert!(
+            f.volume >= SLIVER_VOLUME_FRACTION,
+            "fragment {i}: {}",
+            f.volume
+        );
+        if f.mesh.triangles.len() == 4 {
+            // A lone tetrahedron has a decent shape.
+            let p = &f.convex_pieces[0];
+            assert_eq!(p.len(), 4);
+            let v = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])).abs() / 6.0;
+            let mut l: f64 = 0.0;
+            for a in p {
+                for b in p {
+                    l = l.max((*a - *b).length());
+                }
+            }
+            let q = 6.0 * std::f64::consts::SQRT_2 * v / (l * l * l);
+            assert!(q >= SLIVER_QUALITY, "fragment {i}: quality {q}");
+        }
+    }
+}
+
+#[test]
+fn tetra_is_deterministic() {
+    let bird = builtin::bird();
+    let p = tetra(80, 1, true, Placement::Thesis);
+    let a = fracture(&bird, &p).unwrap();
+    let b = fracture(&bird, &p).unwrap();
+    assert_eq!(a.bonds, b.bonds);
+    assert_eq!(a.fragments.len(), b.fragments.len());
+    for (x, y) in a.fragments.iter().zip(&b.fragments) {
+        assert_eq!(x.mesh, y.mesh);
+        assert_eq!(x.interior, y.interior);
+    }
+    let mut q = p.clone();
+    q.seed += 1;
+    let c = fracture(&bird, &q).unwrap();
+    assert!(c.fragments.len() != a.fragments.len() || c.bonds != a.bonds);
+}
+
+#[test]
+fn coplanar_points_are_an_error_not_a_panic() {
+    // Every third vertex of the L-block lies on the plane x = y, and so does its centre
+    // and every point the thesis's scheme draws from them.
+    let err = fracture(&l_block(), &tetra(30, 2, false, Placement::Thesis)).unwrap_err();
+    assert!(err.to_string().contains("coplanar"), "{err}");
+}
