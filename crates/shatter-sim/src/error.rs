@@ -14,7 +14,9 @@ pub enum SimError {
         reason: String,
     },
     /// A material preset name that does not exist.
-    #[error("{key}: unknown material `{name}` (expected one of glass, stone, concrete, wood, ceramic, ice)")]
+    #[error(
+        "{key}: unknown material `{name}` (expected one of glass, stone, concrete, wood, ceramic, ice)"
+    )]
     UnknownMaterial {
         /// The key holding the name.
         key: String,

@@ -127,10 +127,17 @@ fn anchored_fragments(fragments: &[Fragment], anchored: bool) -> Vec<bool> {
             .map(|p| p.y)
             .fold(f64::INFINITY, f64::min)
     };
-    let (lo, hi) = fragments.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), f| {
-        let top = f.mesh.positions.iter().map(|p| p.y).fold(f64::NEG_INFINITY, f64::max);
-        (lo.min(lowest(f)), hi.max(top))
-    });
+    let (lo, hi) = fragments
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), f| {
+            let top = f
+                .mesh
+                .positions
+                .iter()
+                .map(|p| p.y)
+                .fold(f64::NEG_INFINITY, f64::max);
+            (lo.min(lowest(f)), hi.max(top))
+        });
     let eps = 1e-6 * (hi - lo).abs().max(1e-9);
     fragments.iter().map(|f| lowest(f) <= lo + eps).collect()
 }

@@ -278,10 +278,7 @@ impl Default for ProjectileSpec {
 impl ProjectileSpec {
     /// Checks the parameters; `key` prefixes the errors.
     pub fn validate(&self, key: &str) -> Result<(), SimError> {
-        for (v, name) in [
-            (self.size, "size"),
-            (self.density, "density"),
-        ] {
+        for (v, name) in [(self.size, "size"), (self.density, "density")] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(SimError::invalid(
                     format!("{key}.{name}"),

@@ -124,7 +124,8 @@ impl World {
         let mut physics = PhysicsWorld::new();
         physics.gravity = self.settings.gravity;
         physics.integration_parameters.dt = self.settings.dt;
-        physics.integration_parameters.num_solver_iterations = self.settings.solver_iterations.max(1);
+        physics.integration_parameters.num_solver_iterations =
+            self.settings.solver_iterations.max(1);
         self.physics = physics;
         self.ground = None;
         if self.settings.ground {
@@ -156,9 +157,8 @@ impl World {
         self.refresh();
     }
 
-    /// Updates the broad phase so ray casts see the current bodies (no time passes).
+    /// Updates the statistics after an edit (no time passes).
     pub(crate) fn refresh(&mut self) {
-        self.physics.detect_collisions(&(), &());
         self.update_counts();
     }
 
@@ -171,7 +171,8 @@ impl World {
         };
         let spec = &record.spec;
         let model = spec.bond_model.unwrap_or(default_model);
-        let mut live = LiveObject::empty(model, record.prepared.clone(), spec.effective_break_force());
+        let mut live =
+            LiveObject::empty(model, record.prepared.clone(), spec.effective_break_force());
         let pose = object_pose(spec.position, spec.rotation);
         let surface = Surface {
             density: spec.material.density,
@@ -179,8 +180,12 @@ impl World {
             restitution: spec.material.restitution,
         };
         match model {
-            BondModel::Joints => joints::build(&mut self.physics, &mut live, id.0, pose, surface, ground),
-            BondModel::Clusters => clusters::build(&mut self.physics, &mut live, id.0, pose, surface),
+            BondModel::Joints => {
+                joints::build(&mut self.physics, &mut live, id.0, pose, surface, ground)
+            }
+            BondModel::Clusters => {
+                clusters::build(&mut self.physics, &mut live, id.0, pose, surface)
+            }
         }
         record.live = Some(live);
     }
@@ -225,7 +230,10 @@ impl World {
         if prepared.pieces.iter().all(|p| p.is_empty()) {
             return Err(SimError::EmptyFracture {
                 key: key.to_string(),
-                reason: format!("{} fragments, none with a convex piece", prepared.pieces.len()),
+                reason: format!(
+                    "{} fragments, none with a convex piece",
+                    prepared.pieces.len()
+                ),
             });
         }
         Ok(Arc::new(prepared))

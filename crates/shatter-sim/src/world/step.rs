@@ -95,7 +95,9 @@ impl World {
 
     fn break_joints(&mut self) {
         for record in self.objects.values_mut() {
-            let Some(live) = record.live.as_mut() else { continue };
+            let Some(live) = record.live.as_mut() else {
+                continue;
+            };
             if live.model == BondModel::Joints {
                 joints::break_overloaded(&mut self.physics, live);
             }
@@ -106,19 +108,41 @@ impl World {
         let mut loads: BTreeMap<u32, Loads> = BTreeMap::new();
         for hit in hits {
             for (collider, sign) in [(hit.collider1, -1.0), (hit.collider2, 1.0)] {
-                let Some(co) = self.physics.colliders.get(collider) else { continue };
+                let Some(co) = self.physics.colliders.get(collider) else {
+                    continue;
+                };
                 let Some((Kind::Fragment, object, f)) = untag(co.user_data) else {
                     continue;
                 };
-                let Some(live) = self.objects.get(&ObjectId(object)).and_then(|r| r.live.as_ref())
+                let Some(live) = self
+                    .objects
+                    .get(&ObjectId(object))
+                    .and_then(|r| r.live.as_ref())
                 else {
                     continue;
                 };
                 if live.model != BondModel::Clusters {
                     continue;
                 }
+                let other = if sign > 0.0 { hit.collider1 } else { hit.collider2 };
+                let other_mass = self
+                    .physics
+                    .colliders
+                    .get(other)
+                    .and_then(|c| c.parent())
+                    .and_then(|b| self.physics.bodies.get(b))
+                    .filter(|rb| rb.is_dynamic())
+                    .map_or(0.0, |rb| rb.mass());
                 let entry = loads.entry(object).or_default();
-                clusters::load_from_contact(&self.physics, live, f, hit.force, hit.impulse * sign, entry);
+                clusters::load_from_contact(
+                    &self.physics,
+                    live,
+                    f,
+                    hit.force,
+                    hit.impulse * sign,
+                    other_mass,
+                    entry,
+                );
             }
         }
         self.apply_loads(loads);
@@ -127,7 +151,10 @@ impl World {
     /// Breaks overloaded bonds and splits the bodies they held.
     pub(crate) fn apply_loads(&mut self, loads: BTreeMap<u32, Loads>) {
         for (object, loads) in loads {
-            let Some(live) = self.objects.get_mut(&ObjectId(object)).and_then(|r| r.live.as_mut())
+            let Some(live) = self
+                .objects
+                .get_mut(&ObjectId(object))
+                .and_then(|r| r.live.as_mut())
             else {
                 continue;
             };
@@ -190,7 +217,9 @@ impl World {
     pub fn explode(&mut self, spec: ExplosionSpec) {
         let mut loads: BTreeMap<u32, Loads> = BTreeMap::new();
         for (id, record) in &self.objects {
-            let Some(live) = record.live.as_ref() else { continue };
+            let Some(live) = record.live.as_ref() else {
+                continue;
+            };
             if live.model == BondModel::Clusters {
                 let entry = loads.entry(id.0).or_default();
                 clusters::load_from_explosion(
@@ -263,9 +292,17 @@ impl World {
             if !finite {
                 bad.push((h, rb.user_data, "non-finite state".to_string()));
             } else if rb.linvel().length() > max_speed {
-                bad.push((h, rb.user_data, format!("speed {} m/s", rb.linvel().length())));
+                bad.push((
+                    h,
+                    rb.user_data,
+                    format!("speed {} m/s", rb.linvel().length()),
+                ));
             } else if !rb.is_enabled() {
-                bad.push((h, rb.user_data, "disabled by Rapier's quarantine".to_string()));
+                bad.push((
+                    h,
+                    rb.user_data,
+                    "disabled by Rapier's quarantine".to_string(),
+                ));
             }
         }
         for (h, data, reason) in bad {
@@ -274,7 +311,11 @@ impl World {
             }
             let object = match untag(data) {
                 Some((Kind::Fragment, object, _)) => {
-                    if let Some(live) = self.objects.get_mut(&ObjectId(object)).and_then(|r| r.live.as_mut()) {
+                    if let Some(live) = self
+                        .objects
+                        .get_mut(&ObjectId(object))
+                        .and_then(|r| r.live.as_mut())
+                    {
                         for f in 0..live.body.len() {
                             if live.body[f] == Some(h) {
                                 live.body[f] = None;
@@ -300,12 +341,20 @@ impl World {
 
     /// Removes the oldest debris beyond the cap.
     fn cap_debris(&mut self) {
-        let Some(cap) = self.settings.max_debris else { return };
+        let Some(cap) = self.settings.max_debris else {
+            return;
+        };
         self.debris
             .retain(|(_, h)| self.physics.bodies.contains(*h));
         while self.debris.len() > cap {
-            let Some((object, h)) = self.debris.pop_front() else { break };
-            if let Some(live) = self.objects.get_mut(&ObjectId(object)).and_then(|r| r.live.as_mut()) {
+            let Some((object, h)) = self.debris.pop_front() else {
+                break;
+            };
+            if let Some(live) = self
+                .objects
+                .get_mut(&ObjectId(object))
+                .and_then(|r| r.live.as_mut())
+            {
                 for f in 0..live.body.len() {
                     if live.body[f] == Some(h) {
                         live.body[f] = None;
