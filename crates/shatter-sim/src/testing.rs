@@ -117,27 +117,6 @@ pub fn box_fragment(lo: DVec3, hi: DVec3, on_boundary: [bool; 6]) -> Fragment {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn grid_fragments_are_outward_and_fill_the_box() {
-        let f = box_grid_fracture([3, 2, 4], DVec3::new(3.0, 1.0, 2.0));
-        let total: f64 = f.fragments.iter().map(|g| g.mesh.signed_volume()).sum();
-        assert!((total - 6.0).abs() < 1e-12);
-        for g in &f.fragments {
-            assert!((g.mesh.signed_volume() - g.volume).abs() < 1e-12);
-            assert!((g.mesh.centroid() - g.centroid).length() < 1e-12);
-        }
-        for b in &f.bonds {
-            assert!(b.a < b.b);
-            let d = f.fragments[b.b as usize].centroid - f.fragments[b.a as usize].centroid;
-            assert!((d.normalize() - b.normal).length() < 1e-12);
-        }
-    }
-}
-
 /// The benchmark wall of `assets/scenes/wall.toml`, built in code: 40 × 25 × 2 = 2,000
 /// anchored stone bricks (4 m × 2.5 m × 0.4 m, break force 20 kN) and a 0.3 m steel ball
 /// at 40 m/s fired 0.5 s in.
@@ -169,4 +148,25 @@ pub fn wall_benchmark_world(model: crate::BondModel) -> crate::World {
         },
     );
     world
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_fragments_are_outward_and_fill_the_box() {
+        let f = box_grid_fracture([3, 2, 4], DVec3::new(3.0, 1.0, 2.0));
+        let total: f64 = f.fragments.iter().map(|g| g.mesh.signed_volume()).sum();
+        assert!((total - 6.0).abs() < 1e-12);
+        for g in &f.fragments {
+            assert!((g.mesh.signed_volume() - g.volume).abs() < 1e-12);
+            assert!((g.mesh.centroid() - g.centroid).length() < 1e-12);
+        }
+        for b in &f.bonds {
+            assert!(b.a < b.b);
+            let d = f.fragments[b.b as usize].centroid - f.fragments[b.a as usize].centroid;
+            assert!((d.normalize() - b.normal).length() < 1e-12);
+        }
+    }
 }

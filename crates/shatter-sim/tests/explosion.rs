@@ -9,7 +9,13 @@ use shatter_sim::ExplosionSpec;
 #[test]
 fn an_explosion_breaks_bonds_inside_its_radius_and_none_far_outside() {
     for model in MODELS {
-        let (mut world, id) = wall_world(model, 12_000.0);
+        // The joints model carries the wall's weight and its jelly-like ringing in every
+        // joint, so it needs a larger margin between break force and static load.
+        let (break_force, power) = match model {
+            shatter_sim::BondModel::Joints => (40_000.0, 12_000.0),
+            shatter_sim::BondModel::Clusters => (20_000.0, 1_000.0),
+        };
+        let (mut world, id) = wall_world(model, break_force);
         let centre = Vec3::new(-1.0, 1.0, 0.3);
         let radius = 0.6;
         let fracture = world.object_fracture(id).unwrap();
@@ -19,7 +25,7 @@ fn an_explosion_breaks_bonds_inside_its_radius_and_none_far_outside() {
         world.explode(ExplosionSpec {
             position: centre,
             radius,
-            power: 3000.0,
+            power,
         });
         for _ in 0..3 {
             world.step();

@@ -85,10 +85,22 @@ impl Scene {
     fn parse_in(text: &str, dir: Option<PathBuf>) -> Result<Scene, SimError> {
         let file: SceneFile = toml::from_str(text).map_err(|e| {
             let (line, column) = e.span().map_or((0, 0), |s| line_col(text, s.start));
+            let mut message = e.message().trim().to_string();
+            // Type errors point at the value: name the key written before it.
+            if !message.contains('`')
+                && let Some(key) = text
+                    .lines()
+                    .nth(line.saturating_sub(1))
+                    .and_then(|l| l.split_once('='))
+                    .map(|(k, _)| k.trim())
+                    .filter(|k| !k.is_empty())
+            {
+                message = format!("key `{key}`: {message}");
+            }
             SimError::SceneSyntax {
                 line,
                 column,
-                message: e.message().trim().to_string(),
+                message,
             }
         })?;
         let ctx = Ctx { text, dir };

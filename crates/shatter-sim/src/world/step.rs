@@ -124,7 +124,11 @@ impl World {
                 if live.model != BondModel::Clusters {
                     continue;
                 }
-                let other = if sign > 0.0 { hit.collider1 } else { hit.collider2 };
+                let other = if sign > 0.0 {
+                    hit.collider1
+                } else {
+                    hit.collider2
+                };
                 let other_mass = self
                     .physics
                     .colliders
