@@ -1,5 +1,107 @@
 //! The `shatter` command line.
+//!
+//! Every command lives in its own module under `commands/` with a clap `Args` struct and
+//! a `run(&Args) -> Result<(), CliError>` function. Exit codes: 0 success, 1 internal
+//! failure, 2 bad input (see [`error`]).
 
-fn main() {
-    println!("shatter");
+mod args;
+mod commands;
+mod error;
+mod library;
+mod memory;
+mod points_file;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+use crate::commands::{bench_delaunay, bench_fracture, fracture, shape, tetrahedralize};
+use crate::error::CliError;
+
+/// shatter: fracture simulation — tetrahedralize, fracture, simulate, benchmark.
+#[derive(Debug, Parser)]
+#[command(name = "shatter", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+/// The commands, one variant each.
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// 3D Delaunay tetrahedralization of a point file or of random points.
+    Tetrahedralize(tetrahedralize::TetrahedralizeArgs),
+    /// Export a built-in shape (cube, capsule, cylinder, sphere, torus, bird).
+    Shape(shape::ShapeArgs),
+    /// Fracture a mesh into bonded fragments (tetra, voronoi or slice).
+    Fracture(fracture::FractureArgs),
+    /// Benchmarks.
+    #[command(subcommand)]
+    Bench(BenchCommand),
+}
+
+/// The benchmarks, one variant each.
+#[derive(Debug, Subcommand)]
+enum BenchCommand {
+    /// Time the Delaunay tetrahedralization of random points.
+    Delaunay(bench_delaunay::BenchDelaunayArgs),
+    /// Time the fracture methods on the built-in shapes.
+    Fracture(bench_fracture::BenchFractureArgs),
+}
+
+fn run(command: &Command) -> Result<(), CliError> {
+    match command {
+        Command::Tetrahedralize(a) => tetrahedralize::run(a),
+        Command::Shape(a) => shape::run(a),
+        Command::Fracture(a) => fracture::run(a),
+        Command::Bench(BenchCommand::Delaunay(a)) => bench_delaunay::run(a),
+        Command::Bench(BenchCommand::Fracture(a)) => bench_fracture::run(a),
+    }
+}
+
+fn main() -> ExitCode {
+    // clap prints usage errors itself and exits with code 2.
+    let cli = Cli::parse();
+    // A panic is a bug in shatter, never the user's fault: report it as an internal error
+    // (exit code 1) with a one-line message instead of a backtrace dump.
+    std::panic::set_hook(Box::new(|info| {
+        eprintln!("error: internal error (a bug in shatter, please report it): {info}");
+    }));
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| run(&cli.command))) {
+        Ok(Ok(())) => ExitCode::SUCCESS,
+        Ok(Err(e)) => {
+            eprintln!("error: {e}");
+            ExitCode::from(e.exit_code())
+        }
+        Err(_) => ExitCode::from(error::EXIT_INTERNAL),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    #[test]
+    fn the_command_line_definition_is_consistent() {
+        Cli::command().debug_assert();
+    }
+
+    /// Regression: `--sizes` was declared as `Vec<usize>` with a parser returning a whole
+    /// `Vec`, and clap panicked ("Mismatch between definition and access of `sizes`") on
+    /// every `bench delaunay` run.
+    #[test]
+    fn bench_delaunay_sizes_list_parses_without_a_clap_panic() {
+        let cli = Cli::try_parse_from(["shatter", "bench", "delaunay", "--sizes", "10,200"])
+            .expect("valid arguments");
+        let Command::Bench(BenchCommand::Delaunay(args)) = cli.command else {
+            panic!("parsed as another command");
+        };
+        assert_eq!(args.sizes, vec![10, 200]);
+        let cli = Cli::try_parse_from(["shatter", "bench", "delaunay"]).expect("defaults");
+        let Command::Bench(BenchCommand::Delaunay(args)) = cli.command else {
+            panic!("parsed as another command");
+        };
+        assert_eq!(args.sizes, vec![1000, 10_000, 100_000, 1_000_000]);
+    }
 }

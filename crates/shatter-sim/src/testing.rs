@@ -67,7 +67,11 @@ pub fn box_grid_fracture(cells: [u32; 3], size: DVec3) -> Fracture {
             }
         }
     }
-    Fracture { fragments, bonds }
+    Fracture {
+        fragments,
+        bonds,
+        ..Default::default()
+    }
 }
 
 /// One axis-aligned box fragment from `lo` to `hi`. `on_boundary` flags the faces

@@ -1,50 +1,32 @@
 //! Fracture of closed meshes into bonded fragments.
 //!
-//! Shared result types (fixed; the methods fill them in).
+//! Three methods ([`Method`]): the thesis's Delaunay tetrahedra (`Tetra`), Voronoi cells
+//! clipped exactly to the mesh (`Voronoi`, convex or concave meshes) and plane slicing
+//! (`Slice`). Every method returns a [`Fracture`]: closed, outward fragments whose
+//! triangles are flagged surface or interior, convex pieces for collision, mass
+//! properties, and the bond graph of fragments sharing a face.
+//!
+//! Files, one per step: `validate` (input checks), `piece` (working solid), `clip` and
+//! `cap` (plane clipping with capping), `seeds`, `voronoi`, `slice`, `tetra`, `bonds`
+//! (cap overlap), `convex` (collision pieces), `massprops`, `entry` (the public function).
 
-use glam::{DMat3, DVec3};
+mod bonds;
+mod cap;
+mod clip;
+mod convex;
+mod entry;
+mod massprops;
+mod merge;
+mod params;
+mod piece;
+mod seeds;
+mod slice;
+mod tetra;
+mod types;
+mod validate;
+mod voronoi;
 
-use crate::TriMesh;
-
-/// One piece of a fractured object.
-#[derive(Debug, Clone)]
-pub struct Fragment {
-    /// Closed, outward-wound surface of the fragment, in the object's frame.
-    pub mesh: TriMesh,
-    /// Per triangle of `mesh`: `true` for an interior (cut) face, `false` for a face on
-    /// the original surface.
-    pub interior: Vec<bool>,
-    /// Convex pieces for collision: each a point cloud whose convex hull has a
-    /// non-degenerate volume. Their union approximates the fragment.
-    pub convex_pieces: Vec<Vec<DVec3>>,
-    /// Volume of the fragment.
-    pub volume: f64,
-    /// Centre of mass (uniform density).
-    pub centroid: DVec3,
-    /// Inertia tensor about the centroid for unit density.
-    pub inertia: DMat3,
-}
-
-/// A bond between two fragments that share a face.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Bond {
-    /// First fragment (index into [`Fracture::fragments`]), `a < b`.
-    pub a: u32,
-    /// Second fragment.
-    pub b: u32,
-    /// Area of the shared face.
-    pub area: f64,
-    /// Centroid of the shared face.
-    pub centroid: DVec3,
-    /// Unit normal of the shared face, pointing from `a` to `b`.
-    pub normal: DVec3,
-}
-
-/// A fractured object: fragments and the bond graph between them.
-#[derive(Debug, Clone, Default)]
-pub struct Fracture {
-    /// The fragments.
-    pub fragments: Vec<Fragment>,
-    /// Bonds between fragments sharing a face, sorted by `(a, b)`, each pair once.
-    pub bonds: Vec<Bond>,
-}
+pub use entry::fracture;
+pub use params::{FractureError, FractureParams, Method, Pattern, Placement};
+pub use tetra::{SLIVER_QUALITY, SLIVER_VOLUME_FRACTION};
+pub use types::{Bond, Fracture, Fragment};

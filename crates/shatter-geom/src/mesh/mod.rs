@@ -1,5 +1,15 @@
-//! Indexed triangle meshes.
+//! Indexed triangle meshes: mass properties, welding, topology checks, validation as a
+//! solid, and inside/outside queries by generalized winding number.
 
+mod check;
+mod intersect;
+mod mass;
+mod shells;
 mod trimesh;
+mod validate;
+mod weld;
+mod winding;
 
+pub use check::MeshReport;
 pub use trimesh::TriMesh;
+pub use validate::MeshError;

@@ -8,6 +8,12 @@ use glam::DVec3;
 /// right-hand normal `(b - a) × (c - a)` points out of a closed, outward mesh and its
 /// signed volume is positive.
 ///
+/// Indices are trusted: [`check`](TriMesh::check), [`welded`](TriMesh::welded) and
+/// [`validate_solid`](TriMesh::validate_solid) accept any input, but the geometric
+/// queries (volume, inertia, winding number, …) index `positions` directly and panic on an
+/// out-of-range index. Meshes from [`crate::io`] and [`crate::shapes`] are always in
+/// range; validate meshes built by hand from user data first.
+///
 /// ```
 /// use shatter_geom::{DVec3, TriMesh};
 /// // A unit right tetrahedron, wound outward.
@@ -87,5 +93,98 @@ impl TriMesh {
                 .iter()
                 .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p))),
         )
+    }
+
+    /// Unit normal of triangle `t` by the right-hand rule (outward for an outward mesh), or
+    /// [`DVec3::ZERO`] for a zero-area triangle.
+    ///
+    /// ```
+    /// use shatter_geom::{DVec3, TriMesh};
+    /// let m = TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]);
+    /// assert_eq!(m.triangle_normal(0), DVec3::Z);
+    /// ```
+    pub fn triangle_normal(&self, t: usize) -> DVec3 {
+        let [a, b, c] = self.triangle(t);
+        (b - a).cross(c - a).normalize_or_zero()
+    }
+
+    /// Area of triangle `t`.
+    pub fn triangle_area(&self, t: usize) -> f64 {
+        let [a, b, c] = self.triangle(t);
+        0.5 * (b - a).cross(c - a).length()
+    }
+
+    /// Total area of the triangles.
+    ///
+    /// ```
+    /// use shatter_geom::shapes;
+    /// assert!((shapes::cube().surface_area() - 6.0).abs() < 1e-12);
+    /// ```
+    pub fn surface_area(&self) -> f64 {
+        (0..self.triangles.len())
+            .map(|t| self.triangle_area(t))
+            .sum()
+    }
+
+    /// The mesh scaled per axis about the origin, then translated. A scale with an odd
+    /// number of negative components mirrors the mesh; the winding is then reversed so an
+    /// outward mesh stays outward.
+    ///
+    /// ```
+    /// use shatter_geom::{DVec3, shapes};
+    /// let m = shapes::cube().transformed(DVec3::new(2.0, 1.0, 3.0), DVec3::new(0.0, 10.0, 0.0));
+    /// assert!((m.volume() - 6.0).abs() < 1e-12);
+    /// assert!((m.centroid() - DVec3::new(0.0, 10.0, 0.0)).length() < 1e-12);
+    /// ```
+    pub fn transformed(&self, scale: DVec3, translate: DVec3) -> TriMesh {
+        let positions = self
+            .positions
+            .iter()
+            .map(|&p| p * scale + translate)
+            .collect();
+        let mirrored = scale.x * scale.y * scale.z < 0.0;
+        let triangles = if mirrored {
+            self.triangles.iter().map(|&[a, b, c]| [a, c, b]).collect()
+        } else {
+            self.triangles.clone()
+        };
+        TriMesh::new(positions, triangles)
+    }
+
+    /// The mesh with every triangle's winding reversed (normals point the other way).
+    ///
+    /// ```
+    /// use shatter_geom::shapes;
+    /// let cube = shapes::cube();
+    /// assert!((cube.flipped().signed_volume() + 1.0).abs() < 1e-12);
+    /// ```
+    pub fn flipped(&self) -> TriMesh {
+        TriMesh::new(
+            self.positions.clone(),
+            self.triangles.iter().map(|&[a, b, c]| [a, c, b]).collect(),
+        )
+    }
+
+    /// All meshes in one: positions concatenated, indices offset. Triangle order follows
+    /// the input order, so per-triangle data can be concatenated alongside.
+    ///
+    /// ```
+    /// use shatter_geom::{DVec3, TriMesh, shapes};
+    /// let a = shapes::cube();
+    /// let b = a.transformed(DVec3::ONE, DVec3::new(3.0, 0.0, 0.0));
+    /// let both = TriMesh::merge(&[a, b]);
+    /// assert_eq!(both.triangles.len(), 24);
+    /// assert_eq!(both.check().components, 2);
+    /// ```
+    pub fn merge(meshes: &[TriMesh]) -> TriMesh {
+        let mut out = TriMesh::default();
+        for m in meshes {
+            let offset =
+                u32::try_from(out.positions.len()).expect("merged mesh exceeds u32 vertices");
+            out.positions.extend_from_slice(&m.positions);
+            out.triangles
+                .extend(m.triangles.iter().map(|t| t.map(|i| i + offset)));
+        }
+        out
     }
 }

@@ -107,7 +107,11 @@ pub fn prepare(fracture: &Fracture, scale: Vec3, density: f32, anchored: bool) -
     }
     let anchored = anchored_fragments(&fragments, anchored);
     Prepared {
-        fracture: Arc::new(Fracture { fragments, bonds }),
+        fracture: Arc::new(Fracture {
+            fragments,
+            bonds,
+            ..Default::default()
+        }),
         pieces,
         masses,
         anchored,

@@ -1,0 +1,54 @@
+//! shatter's interactive sandbox: the thesis's breakable-object system in Bevy + egui.
+//!
+//! One plugin per concern — [`camera::CameraPlugin`], [`render::SceneRenderPlugin`],
+//! [`ui::UiPlugin`], [`input::ClickPlugin`], [`sim_plugin::SimPlugin`] and
+//! [`autotest::AutotestPlugin`] — gathered by [`ShatterAppPlugin`]. The simulation is
+//! reached only through [`sim_bridge::SimBridge`]; the panels only produce typed
+//! [`commands::SimCommand`]s, validated by pure functions in [`ui::forms`].
+//!
+//! ```no_run
+//! use bevy::prelude::*;
+//! use shatter_app::ShatterAppPlugin;
+//!
+//! App::new()
+//!     .add_plugins(DefaultPlugins)
+//!     .add_plugins(ShatterAppPlugin::default())
+//!     .run();
+//! ```
+
+pub mod autotest;
+pub mod camera;
+pub mod commands;
+pub mod input;
+pub mod render;
+pub mod sim_bridge;
+pub mod sim_plugin;
+pub mod ui;
+
+use std::path::PathBuf;
+
+use bevy::prelude::*;
+use bevy_egui::EguiPlugin;
+
+/// Everything the sandbox needs on top of Bevy's `DefaultPlugins`.
+#[derive(Debug, Clone, Default)]
+pub struct ShatterAppPlugin {
+    /// Run the scripted session and write its results to this folder.
+    pub autotest: Option<PathBuf>,
+}
+
+impl Plugin for ShatterAppPlugin {
+    fn build(&self, app: &mut App) {
+        app.add_plugins(EguiPlugin::default())
+            .add_plugins((
+                camera::CameraPlugin::default(),
+                render::SceneRenderPlugin::default(),
+                ui::UiPlugin,
+                input::ClickPlugin,
+                sim_plugin::SimPlugin,
+            ));
+        if let Some(dir) = &self.autotest {
+            app.add_plugins(autotest::AutotestPlugin { dir: dir.clone() });
+        }
+    }
+}

@@ -1,0 +1,69 @@
+//! `shatter-app`: the interactive fracture sandbox.
+//!
+//! ```text
+//! shatter-app [--autotest DIR]
+//! ```
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use bevy::prelude::*;
+use bevy::window::{PresentMode, WindowResolution};
+use shatter_app::ShatterAppPlugin;
+
+const USAGE: &str = "usage: shatter-app [--autotest DIR]";
+
+fn parse_args(args: &[String]) -> Result<Option<PathBuf>, String> {
+    let mut autotest = None;
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        match a.as_str() {
+            "--autotest" => {
+                let dir = it.next().ok_or("--autotest needs a folder")?;
+                autotest = Some(PathBuf::from(dir));
+            }
+            "-h" | "--help" => return Err(USAGE.to_owned()),
+            other => return Err(format!("unknown argument '{other}'\n{USAGE}")),
+        }
+    }
+    Ok(autotest)
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let autotest = match parse_args(&args) {
+        Ok(a) => a,
+        Err(msg) => {
+            eprintln!("{msg}");
+            return ExitCode::from(2);
+        }
+    };
+    if let Some(dir) = &autotest
+        && let Err(e) = std::fs::create_dir_all(dir)
+    {
+        eprintln!("cannot create {}: {e}", dir.display());
+        return ExitCode::from(2);
+    }
+    let window = Window {
+        title: "shatter".to_owned(),
+        resolution: WindowResolution::new(1280, 720),
+        // The autotest measures the real frame rate, not the display's.
+        present_mode: if autotest.is_some() {
+            PresentMode::AutoNoVsync
+        } else {
+            PresentMode::AutoVsync
+        },
+        ..default()
+    };
+    let exit = App::new()
+        .add_plugins(DefaultPlugins.set(WindowPlugin {
+            primary_window: Some(window),
+            ..default()
+        }))
+        .add_plugins(ShatterAppPlugin { autotest })
+        .run();
+    match exit {
+        AppExit::Success => ExitCode::SUCCESS,
+        AppExit::Error(code) => ExitCode::from(code.get()),
+    }
+}

@@ -1,0 +1,437 @@
+//! The panels' text fields and their validation into typed commands.
+//!
+//! Each form is a plain struct of strings (what the user typed). `validate` turns it into
+//! a typed value or a [`FieldErrors`] naming every bad field; the panels show each message
+//! next to its field and send nothing.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use crate::commands::{
+    ForceSpec, MATERIAL_PRESETS, MethodChoice, ObjectSpec, PatternChoice, ProjectileSpec,
+    ShapeChoice, SimCommand,
+};
+use crate::ui::fields::{
+    parse_color, parse_count, parse_lifetime, parse_non_negative, parse_positive, parse_real,
+    parse_vec3,
+};
+
+/// Messages for the fields that failed, keyed by field name.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FieldErrors(pub BTreeMap<&'static str, String>);
+
+impl FieldErrors {
+    /// The message for `field`, if it failed.
+    pub fn get(&self, field: &str) -> Option<&str> {
+        self.0.get(field).map(String::as_str)
+    }
+
+    /// Whether no field failed.
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+
+    /// Record the outcome of parsing `field`, returning the value if it parsed.
+    pub fn check<T>(&mut self, field: &'static str, r: Result<T, String>) -> Option<T> {
+        match r {
+            Ok(v) => Some(v),
+            Err(e) => {
+                self.0.insert(field, e);
+                None
+            }
+        }
+    }
+}
+
+/// Checks that a custom mesh file can be used; returns a message otherwise.
+pub type MeshCheck<'a> = &'a dyn Fn(&Path) -> Result<(), String>;
+
+/// Shape selector of the Add Object and Fire panels.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ShapeKind {
+    /// Cube.
+    Cube,
+    /// Capsule.
+    Capsule,
+    /// Cylinder.
+    Cylinder,
+    /// Sphere.
+    Sphere,
+    /// A file given in the path field.
+    Custom,
+}
+
+impl ShapeKind {
+    /// The shapes of the thesis's Add Object panel.
+    pub const OBJECT: [ShapeKind; 4] = [Self::Cube, Self::Capsule, Self::Cylinder, Self::Custom];
+    /// The shapes of the Fire panel.
+    pub const PROJECTILE: [ShapeKind; 5] = [
+        Self::Sphere,
+        Self::Cube,
+        Self::Capsule,
+        Self::Cylinder,
+        Self::Custom,
+    ];
+
+    /// Label shown in the UI.
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::Cube => "Cube",
+            Self::Capsule => "Capsule",
+            Self::Cylinder => "Cylinder",
+            Self::Sphere => "Sphere",
+            Self::Custom => "Custom",
+        }
+    }
+
+    /// The kind of an already chosen shape.
+    pub fn of(shape: &ShapeChoice) -> Self {
+        match shape {
+            ShapeChoice::Cube => Self::Cube,
+            ShapeChoice::Capsule => Self::Capsule,
+            ShapeChoice::Cylinder => Self::Cylinder,
+            ShapeChoice::Sphere => Self::Sphere,
+            ShapeChoice::Custom(_) => Self::Custom,
+        }
+    }
+}
+
+fn shape_choice(
+    kind: ShapeKind,
+    path: &str,
+    check: MeshCheck<'_>,
+) -> Result<ShapeChoice, String> {
+    Ok(match kind {
+        ShapeKind::Cube => ShapeChoice::Cube,
+        ShapeKind::Capsule => ShapeChoice::Capsule,
+        ShapeKind::Cylinder => ShapeChoice::Cylinder,
+        ShapeKind::Sphere => ShapeChoice::Sphere,
+        ShapeKind::Custom => {
+            let p = path.trim();
+            if p.is_empty() {
+                return Err("give the path of an OBJ, STL or glTF file".to_owned());
+            }
+            check(Path::new(p))?;
+            ShapeChoice::Custom(PathBuf::from(p))
+        }
+    })
+}
+
+/// The thesis's Add Object panel (first page), plus method, pattern and material.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AddObjectForm {
+    /// Shape selector.
+    pub shape: ShapeKind,
+    /// Path of the custom mesh.
+    pub custom_path: String,
+    /// "Random Vertices".
+    pub random_vertices: String,
+    /// "Breakforce".
+    pub break_force: String,
+    /// "Skip".
+    pub skip: String,
+    /// "Center".
+    pub center: bool,
+    /// "Last" (empty: for ever).
+    pub last: String,
+    /// "Color" R, G, B in `[0, 1]`.
+    pub color: [String; 3],
+    /// Fracture method.
+    pub method: MethodChoice,
+    /// Voronoi seed pattern.
+    pub pattern: PatternChoice,
+    /// Material preset.
+    pub material: String,
+}
+
+impl Default for AddObjectForm {
+    fn default() -> Self {
+        Self {
+            shape: ShapeKind::Cube,
+            custom_path: String::new(),
+            random_vertices: "40".to_owned(),
+            break_force: "200".to_owned(),
+            skip: "0".to_owned(),
+            center: false,
+            last: String::new(),
+            color: ["0.8".to_owned(), "0.7".to_owned(), "0.3".to_owned()],
+            method: MethodChoice::Tetra,
+            pattern: PatternChoice::Uniform,
+            material: "stone".to_owned(),
+        }
+    }
+}
+
+/// The transform page of Add Object: Position and Scale.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TransformForm {
+    /// Position x, y, z (default (0, 10, 0), as in the thesis).
+    pub position: [String; 3],
+    /// Scale x, y, z (default (1, 1, 1)).
+    pub scale: [String; 3],
+}
+
+impl Default for TransformForm {
+    fn default() -> Self {
+        Self {
+            position: ["0".to_owned(), "10".to_owned(), "0".to_owned()],
+            scale: ["1".to_owned(), "1".to_owned(), "1".to_owned()],
+        }
+    }
+}
+
+impl AddObjectForm {
+    /// Validate both pages into an object specification.
+    pub fn validate(
+        &self,
+        transform: &TransformForm,
+        check: MeshCheck<'_>,
+    ) -> Result<ObjectSpec, FieldErrors> {
+        let mut e = FieldErrors::default();
+        let shape = e.check(
+            "shape",
+            shape_choice(self.shape, &self.custom_path, check),
+        );
+        let random_vertices = e.check("random_vertices", parse_count(&self.random_vertices));
+        let break_force = e.check("break_force", parse_positive(&self.break_force));
+        let skip = e.check("skip", parse_count(&self.skip));
+        let lifetime = e.check("last", parse_lifetime(&self.last));
+        let color = e.check("color", parse_color(&self.color));
+        let material = e.check(
+            "material",
+            if MATERIAL_PRESETS.contains(&self.material.as_str()) {
+                Ok(self.material.clone())
+            } else {
+                Err(format!("unknown material '{}'", self.material))
+            },
+        );
+        if self.method != MethodChoice::Tetra && random_vertices == Some(0) {
+            e.0.insert(
+                "random_vertices",
+                format!("{} needs at least 1 piece", self.method.name()),
+            );
+        }
+        let position = e.check("position", parse_vec3(&transform.position, parse_real));
+        let scale = e.check("scale", parse_vec3(&transform.scale, parse_positive));
+        match (
+            shape,
+            random_vertices,
+            break_force,
+            skip,
+            lifetime,
+            color,
+            material,
+            position,
+            scale,
+        ) {
+            (
+                Some(shape),
+                Some(random_vertices),
+                Some(break_force),
+                Some(skip),
+                Some(lifetime),
+                Some(color),
+                Some(material),
+                Some(position),
+                Some(scale),
+            ) if e.is_empty() => Ok(ObjectSpec {
+                shape,
+                method: self.method,
+                pattern: self.pattern,
+                random_vertices,
+                skip,
+                center: self.center,
+                break_force,
+                lifetime,
+                color,
+                material,
+                position,
+                scale,
+            }),
+            _ => Err(e),
+        }
+    }
+
+    /// Fill both pages from an existing object (Edit).
+    pub fn from_spec(spec: &ObjectSpec) -> (AddObjectForm, TransformForm) {
+        let f = |v: f64| format!("{v}");
+        let form = AddObjectForm {
+            shape: ShapeKind::of(&spec.shape),
+            custom_path: match &spec.shape {
+                ShapeChoice::Custom(p) => p.display().to_string(),
+                _ => String::new(),
+            },
+            random_vertices: spec.random_vertices.to_string(),
+            break_force: f(spec.break_force),
+            skip: spec.skip.to_string(),
+            center: spec.center,
+            last: spec.lifetime.map(f).unwrap_or_default(),
+            color: spec.color.map(|c| format!("{c}")),
+            method: spec.method,
+            pattern: spec.pattern,
+            material: spec.material.clone(),
+        };
+        let transform = TransformForm {
+            position: spec.position.to_array().map(f),
+            scale: spec.scale.to_array().map(f),
+        };
+        (form, transform)
+    }
+}
+
+/// The thesis's Fire panel.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FireForm {
+    /// Projectile shape.
+    pub shape: ShapeKind,
+    /// Path of a custom projectile mesh.
+    pub custom_path: String,
+    /// "Last" (empty: for ever).
+    pub last: String,
+    /// Colour R, G, B in `[0, 1]`.
+    pub color: [String; 3],
+    /// "Speed" in m/s.
+    pub speed: String,
+    /// Size in m.
+    pub size: String,
+    /// Density in kg/m³.
+    pub density: String,
+}
+
+impl Default for FireForm {
+    fn default() -> Self {
+        let d = ProjectileSpec::default();
+        Self {
+            shape: ShapeKind::Sphere,
+            custom_path: String::new(),
+            last: d.lifetime.map(|v| v.to_string()).unwrap_or_default(),
+            color: d.color.map(|c| c.to_string()),
+            speed: d.speed.to_string(),
+            size: d.size.to_string(),
+            density: d.density.to_string(),
+        }
+    }
+}
+
+impl FireForm {
+    /// Validate into the projectile that later clicks fire ("OK").
+    pub fn validate(&self, check: MeshCheck<'_>) -> Result<ProjectileSpec, FieldErrors> {
+        let mut e = FieldErrors::default();
+        let shape = e.check("shape", shape_choice(self.shape, &self.custom_path, check));
+        let lifetime = e.check("last", parse_lifetime(&self.last));
+        let color = e.check("color", parse_color(&self.color));
+        let speed = e.check("speed", parse_positive(&self.speed));
+        let size = e.check("size", parse_positive(&self.size));
+        let density = e.check("density", parse_positive(&self.density));
+        match (shape, lifetime, color, speed, size, density) {
+            (Some(shape), Some(lifetime), Some(color), Some(speed), Some(size), Some(density)) => {
+                Ok(ProjectileSpec {
+                    shape,
+                    lifetime,
+                    color,
+                    speed,
+                    size,
+                    density,
+                })
+            }
+            _ => Err(e),
+        }
+    }
+}
+
+/// The thesis's Add Force panel.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ForceForm {
+    /// "isOn".
+    pub enabled: bool,
+    /// "Radius" in m.
+    pub radius: String,
+    /// "Power".
+    pub power: String,
+}
+
+impl Default for ForceForm {
+    fn default() -> Self {
+        let d = ForceSpec::default();
+        Self {
+            enabled: d.enabled,
+            radius: d.radius.to_string(),
+            power: d.power.to_string(),
+        }
+    }
+}
+
+impl ForceForm {
+    /// Validate into the explosion that later clicks set off.
+    pub fn validate(&self) -> Result<ForceSpec, FieldErrors> {
+        let mut e = FieldErrors::default();
+        let radius = e.check("radius", parse_positive(&self.radius));
+        let power = e.check("power", parse_non_negative(&self.power));
+        match (radius, power) {
+            (Some(radius), Some(power)) => Ok(ForceSpec {
+                enabled: self.enabled,
+                radius,
+                power,
+            }),
+            _ => Err(e),
+        }
+    }
+}
+
+/// The scene file field (save / load, TOML).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneFileForm {
+    /// Path of the TOML file.
+    pub path: String,
+}
+
+impl Default for SceneFileForm {
+    fn default() -> Self {
+        Self {
+            path: "my_scene.toml".to_owned(),
+        }
+    }
+}
+
+impl SceneFileForm {
+    fn toml_path(&self) -> Result<PathBuf, FieldErrors> {
+        let mut e = FieldErrors::default();
+        let p = self.path.trim();
+        if p.is_empty() {
+            e.0.insert("path", "give a file name ending in .toml".to_owned());
+        } else if Path::new(p).extension().and_then(|x| x.to_str()) != Some("toml") {
+            e.0.insert("path", format!("'{p}' does not end in .toml"));
+        }
+        if e.is_empty() {
+            Ok(PathBuf::from(p))
+        } else {
+            Err(e)
+        }
+    }
+
+    /// The Save command, if the path can be written to.
+    pub fn save(&self) -> Result<SimCommand, FieldErrors> {
+        let path = self.toml_path()?;
+        let dir = match path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        if !dir.is_dir() {
+            let mut e = FieldErrors::default();
+            e.0.insert("path", format!("folder '{}' does not exist", dir.display()));
+            return Err(e);
+        }
+        Ok(SimCommand::SaveScene(path))
+    }
+
+    /// The Load command, if the file exists.
+    pub fn load(&self) -> Result<SimCommand, FieldErrors> {
+        let path = self.toml_path()?;
+        if !path.is_file() {
+            let mut e = FieldErrors::default();
+            e.0.insert("path", format!("no file '{}'", path.display()));
+            return Err(e);
+        }
+        Ok(SimCommand::LoadScene(path))
+    }
+}

@@ -1,0 +1,126 @@
+//! `shatter bench delaunay`: time the tetrahedralization of random point sets.
+
+use std::time::Instant;
+
+use clap::Args;
+use serde::Serialize;
+use shatter_geom::delaunay;
+
+use crate::args::{Distribution, parse_size};
+use crate::error::{CliError, ResultExt};
+use crate::library;
+use crate::memory;
+
+/// Arguments of `shatter bench delaunay`.
+#[derive(Debug, Args)]
+pub struct BenchDelaunayArgs {
+    /// Comma-separated numbers of points.
+    #[arg(long, value_name = "N,N,...", value_parser = parse_size, value_delimiter = ',',
+          default_value = "1000,10000,100000,1000000")]
+    pub sizes: Vec<usize>,
+    /// Distribution of the random points.
+    #[arg(long, value_enum, default_value_t = Distribution::Uniform)]
+    pub distribution: Distribution,
+    /// Seed of the random points.
+    #[arg(long, value_name = "S", default_value_t = 0)]
+    pub seed: u64,
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// One measured size.
+#[derive(Debug, Serialize)]
+struct Row {
+    points: usize,
+    unique_points: usize,
+    tetrahedra: usize,
+    millis: f64,
+    points_per_second: f64,
+    /// Peak RSS during the tetrahedralization minus the RSS just before it (the points
+    /// were already allocated), per point. `None` where `/proc` is unavailable.
+    peak_bytes_per_point: Option<f64>,
+}
+
+/// The `--json` report.
+#[derive(Debug, Serialize)]
+struct Report {
+    distribution: &'static str,
+    seed: u64,
+    rows: Vec<Row>,
+    /// Process-wide peak RSS (VmHWM) at the end, in bytes.
+    process_peak_rss_bytes: Option<u64>,
+    /// Whether each row's peak was measured alone (`/proc/self/clear_refs` reset worked)
+    /// or is process-wide.
+    per_row_peak: bool,
+}
+
+/// Runs `shatter bench delaunay`.
+pub fn run(args: &BenchDelaunayArgs) -> Result<(), CliError> {
+    // clap's parser guarantees a non-empty list of positive sizes.
+    let mut rows = Vec::with_capacity(args.sizes.len());
+    let mut per_row_peak = true;
+    if !args.json {
+        println!(
+            "{:>10} {:>10} {:>12} {:>11} {:>14} {:>12}",
+            "points", "unique", "tetrahedra", "ms", "points/s", "bytes/point"
+        );
+    }
+    for &n in &args.sizes {
+        let points = library::random_points(args.distribution, n, args.seed)?;
+        per_row_peak &= memory::reset_peak();
+        let before = memory::current_rss_bytes();
+        let start = Instant::now();
+        let tets = delaunay::tetrahedralize(&points)
+            .input_err(format!("{n} random {} points", args.distribution.as_str()))?;
+        let millis = start.elapsed().as_secs_f64() * 1e3;
+        let peak = memory::peak_rss_bytes();
+        let peak_bytes_per_point = match (before, peak) {
+            (Some(b), Some(p)) => Some(p.saturating_sub(b) as f64 / n as f64),
+            _ => None,
+        };
+        let row = Row {
+            points: n,
+            unique_points: tets.unique_points,
+            tetrahedra: tets.tetrahedra.len(),
+            millis,
+            points_per_second: n as f64 / (millis / 1e3).max(1e-9),
+            peak_bytes_per_point,
+        };
+        drop(tets);
+        if !args.json {
+            println!(
+                "{:>10} {:>10} {:>12} {:>11.3} {:>14.0} {:>12}",
+                row.points,
+                row.unique_points,
+                row.tetrahedra,
+                row.millis,
+                row.points_per_second,
+                row.peak_bytes_per_point
+                    .map_or_else(|| "n/a".to_string(), |b| format!("{b:.1}"))
+            );
+        }
+        rows.push(row);
+    }
+    let report = Report {
+        distribution: args.distribution.as_str(),
+        seed: args.seed,
+        rows,
+        process_peak_rss_bytes: memory::peak_rss_bytes(),
+        per_row_peak,
+    };
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string(&report).internal_err("cannot encode the report")?
+        );
+    } else {
+        let scope = if per_row_peak {
+            "bytes/point: peak RSS during the tetrahedralization above the RSS before it"
+        } else {
+            "bytes/point: process-wide peak RSS (the peak could not be reset per size)"
+        };
+        println!("{scope}");
+    }
+    Ok(())
+}

@@ -1,0 +1,405 @@
+//! `shatter fracture`: cut a mesh into bonded fragments.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use clap::{ArgGroup, Args, ValueEnum};
+use serde::Serialize;
+use shatter_geom::fracture::Fracture;
+use shatter_geom::{DVec3, TriMesh};
+
+use crate::args::{MeshFormat, ShapeName, check_writable, parse_vec3, validate_scale};
+use crate::error::{CliError, ResultExt};
+use crate::library;
+use crate::points_file::read_points_file;
+
+/// Fracture method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum MethodArg {
+    /// The thesis: Delaunay tetrahedra of surface vertices plus random points.
+    Tetra,
+    /// Voronoi cells of seed points, clipped exactly to the mesh.
+    Voronoi,
+    /// Random planes slicing the mesh.
+    Slice,
+}
+
+/// Where the tetra method puts its random points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum PlacementArg {
+    /// Uniform inside the mesh.
+    Interior,
+    /// Exactly the thesis's scheme (fills the convex hull).
+    Thesis,
+}
+
+/// Voronoi seed pattern.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum PatternArg {
+    /// Uniform inside the mesh.
+    Uniform,
+    /// Around a few centres.
+    Clustered,
+    /// Dense near the impact point, coarser outward (glass).
+    Radial,
+    /// Cells stretched along an axis (wood).
+    Splinter,
+}
+
+/// Arguments of `shatter fracture`.
+#[derive(Debug, Args)]
+#[command(group(ArgGroup::new("source").required(true).args(["mesh", "shape"])))]
+pub struct FractureArgs {
+    /// Mesh file: .obj, .stl or .glb/.gltf (closed, consistently wound).
+    #[arg(value_name = "MESH")]
+    pub mesh: Option<PathBuf>,
+    /// A built-in shape instead of a file.
+    #[arg(long, value_enum, value_name = "NAME")]
+    pub shape: Option<ShapeName>,
+    /// Scale along x, y and z (each greater than 0), applied before fracturing.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub scale: Option<DVec3>,
+    /// Fracture method.
+    #[arg(long, value_enum, default_value_t = MethodArg::Voronoi)]
+    pub method: MethodArg,
+    /// Number of pieces (voronoi seeds or slice planes) [default: 20 voronoi, 4 slice].
+    #[arg(long, value_name = "K")]
+    pub pieces: Option<usize>,
+    /// tetra: number of random points added to the surface vertices [default: 50].
+    #[arg(long, value_name = "N")]
+    pub random_vertices: Option<usize>,
+    /// tetra: use only every (S+1)-th surface vertex [default: 0].
+    #[arg(long, value_name = "S")]
+    pub skip: Option<usize>,
+    /// tetra: also add the mesh's centre.
+    #[arg(long)]
+    pub center: bool,
+    /// tetra: where random points go [default: interior].
+    #[arg(long, value_enum)]
+    pub placement: Option<PlacementArg>,
+    /// voronoi: seed pattern [default: uniform].
+    #[arg(long, value_enum)]
+    pub pattern: Option<PatternArg>,
+    /// voronoi radial: the impact point [default: the mesh's centroid].
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub impact: Option<DVec3>,
+    /// voronoi: read the seeds from a points file instead of generating them.
+    #[arg(long, value_name = "POINTS.xyz", conflicts_with_all = ["pieces", "pattern"])]
+    pub seeds_file: Option<PathBuf>,
+    /// Random seed.
+    #[arg(long, value_name = "S", default_value_t = 0)]
+    pub seed: u64,
+    /// Write the fragments: .obj (one object per fragment) or .glb (one node per fragment).
+    #[arg(long, value_name = "FILE.obj|FILE.glb")]
+    pub out: Option<PathBuf>,
+    /// Print one JSON object with counts, volumes and the time.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Where the mesh comes from.
+#[derive(Debug, Clone)]
+pub enum MeshSource {
+    /// A mesh file.
+    File(PathBuf),
+    /// A built-in shape.
+    Shape(ShapeName),
+}
+
+/// A validated fracture method with its parameters.
+#[derive(Debug, Clone)]
+pub enum MethodConfig {
+    /// The thesis's tetrahedra.
+    Tetra {
+        /// Random points added.
+        random_vertices: usize,
+        /// Surface vertices skipped between two taken.
+        skip: usize,
+        /// Add the centre point.
+        center: bool,
+        /// Random point placement.
+        placement: PlacementArg,
+    },
+    /// Voronoi cells clipped to the mesh.
+    Voronoi {
+        /// Seeds: generated (count and pattern) or given.
+        seeds: VoronoiSeeds,
+        /// Impact point for the radial pattern.
+        impact: Option<DVec3>,
+    },
+    /// Plane slicing.
+    Slice {
+        /// Number of planes.
+        planes: usize,
+    },
+}
+
+/// Voronoi seeds, generated or read from a file.
+#[derive(Debug, Clone)]
+pub enum VoronoiSeeds {
+    /// `count` seeds in a pattern.
+    Pattern {
+        /// Number of seeds.
+        count: usize,
+        /// Their pattern.
+        pattern: PatternArg,
+    },
+    /// Given seeds.
+    Points(Vec<DVec3>),
+}
+
+/// A fully validated fracture request, shared with `shatter bench fracture`.
+#[derive(Debug, Clone)]
+pub struct FractureConfig {
+    /// The mesh.
+    pub source: MeshSource,
+    /// Its scale.
+    pub scale: DVec3,
+    /// Method and parameters.
+    pub method: MethodConfig,
+    /// Random seed.
+    pub seed: u64,
+}
+
+impl FractureConfig {
+    /// A one-line description of the method and its parameters.
+    pub fn describe(&self) -> String {
+        let method = match &self.method {
+            MethodConfig::Tetra {
+                random_vertices,
+                skip,
+                center,
+                placement,
+            } => format!(
+                "tetra, {random_vertices} random vertices ({placement:?}), skip {skip}, center {center}"
+            ),
+            MethodConfig::Voronoi { seeds, impact } => {
+                let seeds = match seeds {
+                    VoronoiSeeds::Pattern { count, pattern } => {
+                        format!("{count} {pattern:?} seeds")
+                    }
+                    VoronoiSeeds::Points(p) => format!("{} seeds from a file", p.len()),
+                };
+                match impact {
+                    Some(i) => format!("voronoi, {seeds}, impact {},{},{}", i.x, i.y, i.z),
+                    None => format!("voronoi, {seeds}"),
+                }
+            }
+            MethodConfig::Slice { planes } => format!("slice, {planes} planes"),
+        };
+        format!("{method}, seed {}", self.seed)
+    }
+}
+
+impl MethodArg {
+    fn as_str(self) -> &'static str {
+        match self {
+            Self::Tetra => "tetra",
+            Self::Voronoi => "voronoi",
+            Self::Slice => "slice",
+        }
+    }
+}
+
+impl FractureArgs {
+    /// Validates the arguments into a configuration and the optional output.
+    fn validate(&self) -> Result<(FractureConfig, Option<(PathBuf, MeshFormat)>), CliError> {
+        let source = match (&self.mesh, self.shape) {
+            (Some(path), None) => MeshSource::File(path.clone()),
+            (None, Some(shape)) => MeshSource::Shape(shape),
+            _ => return Err(CliError::input("give either a MESH file or --shape")),
+        };
+        let scale = validate_scale(self.scale)?;
+        let method = self.method;
+        let refuse = |flag: &str, applies_to: &str| {
+            CliError::input(format!(
+                "{flag} applies to --method {applies_to}, not --method {}",
+                method.as_str()
+            ))
+        };
+        if method != MethodArg::Tetra {
+            if self.random_vertices.is_some() {
+                return Err(refuse("--random-vertices", "tetra"));
+            }
+            if self.skip.is_some() {
+                return Err(refuse("--skip", "tetra"));
+            }
+            if self.center {
+                return Err(refuse("--center", "tetra"));
+            }
+            if self.placement.is_some() {
+                return Err(refuse("--placement", "tetra"));
+            }
+        }
+        if method != MethodArg::Voronoi {
+            if self.pattern.is_some() {
+                return Err(refuse("--pattern", "voronoi"));
+            }
+            if self.impact.is_some() {
+                return Err(refuse("--impact", "voronoi"));
+            }
+            if self.seeds_file.is_some() {
+                return Err(refuse("--seeds-file", "voronoi"));
+            }
+        }
+        if method == MethodArg::Tetra && self.pieces.is_some() {
+            return Err(CliError::input(
+                "--pieces applies to --method voronoi and slice; \
+                 --method tetra makes one fragment per tetrahedron (see --random-vertices)",
+            ));
+        }
+        if self.pieces == Some(0) {
+            return Err(CliError::input("--pieces 0: at least 1 piece is needed"));
+        }
+        if self.impact.is_some() && self.pattern != Some(PatternArg::Radial) {
+            return Err(CliError::input("--impact applies to --pattern radial only"));
+        }
+        let method = match method {
+            MethodArg::Tetra => MethodConfig::Tetra {
+                random_vertices: self.random_vertices.unwrap_or(50),
+                skip: self.skip.unwrap_or(0),
+                center: self.center,
+                placement: self.placement.unwrap_or(PlacementArg::Interior),
+            },
+            MethodArg::Voronoi => {
+                let seeds = match &self.seeds_file {
+                    Some(path) => {
+                        VoronoiSeeds::Points(read_points_file(path).map_err(CliError::input)?)
+                    }
+                    None => VoronoiSeeds::Pattern {
+                        count: self.pieces.unwrap_or(20),
+                        pattern: self.pattern.unwrap_or(PatternArg::Uniform),
+                    },
+                };
+                MethodConfig::Voronoi {
+                    seeds,
+                    impact: self.impact,
+                }
+            }
+            MethodArg::Slice => MethodConfig::Slice {
+                planes: self.pieces.unwrap_or(4),
+            },
+        };
+        let out = match &self.out {
+            Some(path) => {
+                let format = MeshFormat::from_output_path(path)?;
+                Some((check_writable(path)?, format))
+            }
+            None => None,
+        };
+        Ok((
+            FractureConfig {
+                source,
+                scale,
+                method,
+                seed: self.seed,
+            },
+            out,
+        ))
+    }
+}
+
+/// The `--json` report.
+#[derive(Debug, Serialize)]
+pub struct FractureReport {
+    /// Number of fragments.
+    pub fragments: usize,
+    /// Number of bonds.
+    pub bonds: usize,
+    /// Volume of the input mesh (after scaling).
+    pub mesh_volume: f64,
+    /// Sum of the fragments' volumes.
+    pub fragments_volume: f64,
+    /// Smallest fragment volume.
+    pub min_fragment_volume: f64,
+    /// Largest fragment volume.
+    pub max_fragment_volume: f64,
+    /// Interior (cut) triangles over all fragments.
+    pub interior_triangles: usize,
+    /// Milliseconds spent in the fracture alone (no loading, no writing).
+    pub millis: f64,
+    /// Warnings (also printed on stderr).
+    pub warnings: Vec<String>,
+}
+
+impl FractureReport {
+    /// Summarises a fracture of `mesh`.
+    pub fn new(mesh: &TriMesh, fracture: &Fracture, millis: f64, warnings: Vec<String>) -> Self {
+        let volumes = fracture.fragments.iter().map(|f| f.volume);
+        Self {
+            fragments: fracture.fragments.len(),
+            bonds: fracture.bonds.len(),
+            mesh_volume: mesh.signed_volume().abs(),
+            fragments_volume: volumes.clone().sum(),
+            min_fragment_volume: volumes.clone().fold(f64::INFINITY, f64::min),
+            max_fragment_volume: volumes.fold(0.0, f64::max),
+            interior_triangles: fracture
+                .fragments
+                .iter()
+                .map(|f| f.interior.iter().filter(|&&i| i).count())
+                .sum(),
+            millis,
+            warnings,
+        }
+    }
+}
+
+/// Loads (and scales) the mesh a configuration names and checks that it is a valid
+/// solid; returns it with any warnings (an inward mesh is flipped).
+pub fn load_source(config: &FractureConfig) -> Result<(TriMesh, Vec<String>), CliError> {
+    let (mesh, origin) = match &config.source {
+        MeshSource::File(path) => (library::load_mesh(path)?, path.display().to_string()),
+        MeshSource::Shape(name) => (library::builtin_shape(*name)?, format!("shape {name}")),
+    };
+    let mut mesh = library::scaled(mesh, config.scale);
+    let warnings = library::validate_solid(&mut mesh, &origin)?
+        .into_iter()
+        .collect();
+    Ok((mesh, warnings))
+}
+
+/// Fractures an already loaded mesh; returns the fracture, its warnings and the time in ms.
+pub fn fracture_timed(
+    mesh: &TriMesh,
+    config: &FractureConfig,
+) -> Result<(Fracture, Vec<String>, f64), CliError> {
+    let start = Instant::now();
+    let (fracture, warnings) = library::fracture(mesh, config)?;
+    let millis = start.elapsed().as_secs_f64() * 1e3;
+    Ok((fracture, warnings, millis))
+}
+
+/// Runs `shatter fracture`.
+pub fn run(args: &FractureArgs) -> Result<(), CliError> {
+    let (config, out) = args.validate()?;
+    let (mesh, mut warnings) = load_source(&config)?;
+    let (fracture, more_warnings, millis) = fracture_timed(&mesh, &config)?;
+    warnings.extend(more_warnings);
+    for w in &warnings {
+        eprintln!("warning: {w}");
+    }
+    if let Some((path, format)) = &out {
+        library::write_fracture(path, *format, &fracture)?;
+    }
+    let report = FractureReport::new(&mesh, &fracture, millis, warnings);
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string(&report).internal_err("cannot encode the report")?
+        );
+    } else {
+        println!(
+            "{} fragments, {} bonds in {:.3} ms; volume {:.6} of {:.6} (smallest fragment {:.3e})",
+            report.fragments,
+            report.bonds,
+            report.millis,
+            report.fragments_volume,
+            report.mesh_volume,
+            report.min_fragment_volume
+        );
+        if let Some((path, _)) = &out {
+            println!("wrote {}", path.display());
+        }
+    }
+    Ok(())
+}

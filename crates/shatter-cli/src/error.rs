@@ -1,0 +1,94 @@
+//! The command line's error type and exit codes.
+//!
+//! Exit codes: `0` success, `1` internal failure (a bug or an I/O failure that is not the
+//! user's fault), `2` bad input (a bad flag, file, value or mesh). clap's own usage errors
+//! also exit with `2`.
+
+use std::fmt;
+
+/// Exit code for bad user input.
+pub const EXIT_INPUT: u8 = 2;
+/// Exit code for an internal failure.
+pub const EXIT_INTERNAL: u8 = 1;
+
+/// A failed command: what went wrong and whose fault it was.
+#[derive(Debug)]
+pub enum CliError {
+    /// The user's input is wrong (exit code 2).
+    Input(anyhow::Error),
+    /// Something failed that the user could not prevent (exit code 1).
+    Internal(anyhow::Error),
+}
+
+impl CliError {
+    /// A bad-input error with this message.
+    pub fn input(message: impl fmt::Display) -> Self {
+        Self::Input(anyhow::anyhow!("{message}"))
+    }
+
+    /// An internal error with this message.
+    pub fn internal(message: impl fmt::Display) -> Self {
+        Self::Internal(anyhow::anyhow!("{message}"))
+    }
+
+    /// The process exit code for this error.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            Self::Input(_) => EXIT_INPUT,
+            Self::Internal(_) => EXIT_INTERNAL,
+        }
+    }
+}
+
+impl fmt::Display for CliError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        // `{:#}` prints the whole context chain on one line: "outer: inner: root".
+        match self {
+            Self::Input(e) | Self::Internal(e) => write!(f, "{e:#}"),
+        }
+    }
+}
+
+/// Converting a `Result` into a [`CliError`] with context.
+pub trait ResultExt<T> {
+    /// Bad input, described by `context` followed by the cause.
+    fn input_err(self, context: impl fmt::Display) -> Result<T, CliError>;
+    /// Internal failure, described by `context` followed by the cause.
+    fn internal_err(self, context: impl fmt::Display) -> Result<T, CliError>;
+}
+
+impl<T, E> ResultExt<T> for Result<T, E>
+where
+    E: std::error::Error + Send + Sync + 'static,
+{
+    fn input_err(self, context: impl fmt::Display) -> Result<T, CliError> {
+        self.map_err(|e| CliError::Input(anyhow::Error::new(e).context(context.to_string())))
+    }
+
+    fn internal_err(self, context: impl fmt::Display) -> Result<T, CliError> {
+        self.map_err(|e| CliError::Internal(anyhow::Error::new(e).context(context.to_string())))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+    use super::*;
+
+    #[test]
+    fn input_errors_exit_2_and_internal_errors_exit_1() {
+        assert_eq!(CliError::input("bad").exit_code(), 2);
+        assert_eq!(CliError::internal("bug").exit_code(), 1);
+    }
+
+    #[test]
+    fn context_chain_is_printed_on_one_line() {
+        let r: Result<(), std::io::Error> = Err(std::io::Error::new(
+            std::io::ErrorKind::NotFound,
+            "no such file",
+        ));
+        let e = r.input_err("cannot read 'a.xyz'").unwrap_err();
+        assert_eq!(e.to_string(), "cannot read 'a.xyz': no such file");
+        assert_eq!(e.exit_code(), 2);
+    }
+}

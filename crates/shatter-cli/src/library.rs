@@ -1,0 +1,169 @@
+//! The CLI's one door into `shatter-geom`: every library call the commands make goes
+//! through here, with library errors mapped to exit codes (bad input 2, internal 1).
+
+use std::path::Path;
+
+use shatter_geom::fracture::{Fracture, FractureParams, Method, Pattern, Placement};
+use shatter_geom::io::{self, ExportObject};
+use shatter_geom::{DVec3, TriMesh};
+
+use crate::args::{Distribution, MeshFormat, ShapeName};
+use crate::commands::fracture::{
+    FractureConfig, MethodConfig, PatternArg, PlacementArg, VoronoiSeeds,
+};
+use crate::error::CliError;
+
+fn not_landed(what: &str) -> CliError {
+    CliError::internal(format!(
+        "{what} is not available in this build of shatter-geom"
+    ))
+}
+
+/// `n` random points from `distribution`, reproducible from `seed`.
+pub fn random_points(
+    distribution: Distribution,
+    n: usize,
+    seed: u64,
+) -> Result<Vec<DVec3>, CliError> {
+    let _ = (distribution, n, seed);
+    Err(not_landed("random point sampling"))
+}
+
+/// A built-in shape at unit scale.
+pub fn builtin_shape(name: ShapeName) -> Result<TriMesh, CliError> {
+    shatter_geom::shapes::by_name(name.as_str())
+        .ok_or_else(|| CliError::internal(format!("built-in shape '{name}' is missing")))
+}
+
+/// `mesh` with every vertex multiplied component-wise by `scale` (positive).
+pub fn scaled(mesh: TriMesh, scale: DVec3) -> TriMesh {
+    if scale == DVec3::ONE {
+        mesh
+    } else {
+        mesh.transformed(scale, DVec3::ZERO)
+    }
+}
+
+/// Checks that `mesh` (read from `origin`, a file name or a shape name) is a valid solid.
+/// An inward mesh is flipped, and the returned warning says so; any other defect is a
+/// bad-input error naming `origin` and the counts ("bird.obj: 12 boundary edges").
+pub fn validate_solid(mesh: &mut TriMesh, origin: &str) -> Result<Option<String>, CliError> {
+    match mesh.orient_outward() {
+        Ok(false) => Ok(None),
+        Ok(true) => Ok(Some(format!(
+            "{origin}: the mesh was wound inward; flipped it"
+        ))),
+        Err(e) => Err(CliError::input(format!("{origin}: {e}"))),
+    }
+}
+
+/// Loads a mesh file (OBJ, STL or GLB/glTF, by extension). Every failure is bad input
+/// (exit code 2), named by the file.
+pub fn load_mesh(path: &Path) -> Result<TriMesh, CliError> {
+    if !path.exists() {
+        return Err(CliError::input(format!("{}: no such file", path.display())));
+    }
+    // The library's errors already start with the file name.
+    io::load_mesh(path).map_err(CliError::input)
+}
+
+/// Writes one mesh (no interior faces).
+pub fn write_mesh(path: &Path, format: MeshFormat, mesh: &TriMesh) -> Result<(), CliError> {
+    let name = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "mesh".to_string());
+    save(path, format, &[ExportObject::new(&name, mesh)])
+}
+
+/// Writes a fracture: one object (OBJ `o fragment_i`) or node (GLB) per fragment, cut
+/// faces under the `interior` material, the original surface under `surface`.
+pub fn write_fracture(
+    path: &Path,
+    format: MeshFormat,
+    fracture: &Fracture,
+) -> Result<(), CliError> {
+    let names: Vec<String> = (0..fracture.fragments.len())
+        .map(|i| format!("fragment_{i}"))
+        .collect();
+    let objects: Vec<ExportObject<'_>> = fracture
+        .fragments
+        .iter()
+        .zip(&names)
+        .map(|(f, name)| ExportObject::new(name, &f.mesh).with_interior(&f.interior))
+        .collect();
+    save(path, format, &objects)
+}
+
+fn save(path: &Path, format: MeshFormat, objects: &[ExportObject<'_>]) -> Result<(), CliError> {
+    let result = match format {
+        MeshFormat::Obj => io::save_obj(path, objects),
+        MeshFormat::Glb => io::save_glb(path, objects),
+    };
+    result.map_err(|e| match e {
+        // Failing to create or write the file: the user's path (checked up front, so
+        // this is rare: a full disk, a race).
+        io::MeshIoError::Io { .. } => CliError::input(format!("cannot write: {e}")),
+        // Anything else means shatter produced an inconsistent mesh: a bug.
+        other => CliError::internal(format!("{}: export failed: {other}", path.display())),
+    })
+}
+
+/// Fractures `mesh` as `config` says; returns the fracture and its warnings (an inward
+/// mesh that was flipped, merged slivers, ...). Every library error describes the input
+/// (the mesh or the parameters), so it is bad input (exit code 2).
+pub fn fracture(
+    mesh: &TriMesh,
+    config: &FractureConfig,
+) -> Result<(Fracture, Vec<String>), CliError> {
+    let params = FractureParams {
+        method: method_params(&config.method),
+        seed: config.seed,
+    };
+    let mut result = shatter_geom::fracture::fracture(mesh, &params)
+        .map_err(|e| CliError::input(format!("{}: {e}", config.describe())))?;
+    let warnings = std::mem::take(&mut result.warnings);
+    Ok((result, warnings))
+}
+
+fn method_params(method: &MethodConfig) -> Method {
+    match method {
+        MethodConfig::Tetra {
+            random_vertices,
+            skip,
+            center,
+            placement,
+        } => Method::Tetra {
+            random_vertices: *random_vertices,
+            skip: *skip,
+            center: *center,
+            placement: match placement {
+                PlacementArg::Interior => Placement::Interior,
+                PlacementArg::Thesis => Placement::Thesis,
+            },
+        },
+        MethodConfig::Voronoi { seeds, impact } => {
+            let (pieces, pattern, seeds) = match seeds {
+                VoronoiSeeds::Pattern { count, pattern } => (*count, *pattern, None),
+                VoronoiSeeds::Points(points) => {
+                    (points.len(), PatternArg::Uniform, Some(points.clone()))
+                }
+            };
+            Method::Voronoi {
+                pieces,
+                pattern: match pattern {
+                    PatternArg::Uniform => Pattern::Uniform,
+                    PatternArg::Clustered => Pattern::Clustered,
+                    PatternArg::Radial => Pattern::Radial,
+                    PatternArg::Splinter => Pattern::Splinter,
+                },
+                impact: *impact,
+                seeds,
+            }
+        }
+        MethodConfig::Slice { planes } => Method::Slice {
+            pieces: *planes,
+            planes: None,
+        },
+    }
+}

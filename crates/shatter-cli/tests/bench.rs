@@ -1,0 +1,68 @@
+//! `shatter bench delaunay` and `shatter bench fracture`, end to end (small sizes: these
+//! tests check the reports, not the speed).
+#![allow(clippy::unwrap_used)]
+
+mod common;
+
+use common::shatter;
+
+#[test]
+fn bench_delaunay_reports_every_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = shatter(
+        dir.path(),
+        &[
+            "bench", "delaunay", "--sizes", "100,2000", "--seed", "1", "--json",
+        ],
+    )
+    .ok()
+    .json();
+    let rows = json["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 2);
+    for (row, n) in rows.iter().zip([100, 2000]) {
+        assert_eq!(row["points"], n);
+        assert_eq!(row["unique_points"], n);
+        // A Delaunay tetrahedralization of n random points has roughly 6.5 n tetrahedra.
+        let tets = row["tetrahedra"].as_u64().unwrap();
+        assert!(
+            tets as f64 > 3.0 * n as f64,
+            "{n} points gave {tets} tetrahedra"
+        );
+        assert!(row["points_per_second"].as_f64().unwrap() > 0.0);
+    }
+}
+
+#[test]
+fn bench_delaunay_table_has_a_row_per_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = shatter(dir.path(), &["bench", "delaunay", "--sizes", "50,60,70"]).ok();
+    assert_eq!(run.stdout.lines().count(), 5, "{}", run.stdout);
+}
+
+#[test]
+fn bench_bad_sizes_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    shatter(dir.path(), &["bench", "delaunay", "--sizes", "10,0"]).bad_input(&["at least 1"]);
+    shatter(dir.path(), &["bench", "delaunay", "--sizes", "10,abc"]).bad_input(&["'abc'"]);
+    shatter(dir.path(), &["bench", "fracture", "--runs", "0"]).bad_input(&["--runs"]);
+}
+
+#[test]
+fn bench_fracture_reports_the_thesis_and_blender_cases() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = shatter(dir.path(), &["bench", "fracture", "--runs", "1", "--json"])
+        .ok()
+        .json();
+    let rows = json["rows"].as_array().unwrap();
+    let case = |name: &str| {
+        rows.iter()
+            .find(|r| r["case"] == name)
+            .unwrap_or_else(|| panic!("no case {name}"))
+    };
+    assert!(case("bird voronoi 100")["fragments"].as_u64().unwrap() >= 100);
+    assert!(case("cube tetra 500 thesis")["fragments"].as_u64().unwrap() > 1);
+    for r in rows {
+        assert!(r["mean_ms"].as_f64().unwrap() >= r["min_ms"].as_f64().unwrap());
+        assert!(r["max_ms"].as_f64().unwrap() >= r["mean_ms"].as_f64().unwrap());
+    }
+}

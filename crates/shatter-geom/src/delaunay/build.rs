@@ -1,0 +1,130 @@
+//! The driver: validate the input, order it, find a first tetrahedron, insert every point.
+
+use glam::DVec3;
+use robust::Coord;
+
+use super::insert::Location;
+use super::order::brio_order;
+use super::output::finish;
+use super::predicates::{MAX_MAGNITUDE, MIN_MAGNITUDE, orient};
+use super::storage::Mesh;
+use super::types::{DelaunayError, Tetrahedralization};
+
+/// Delaunay tetrahedralization of `points`.
+///
+/// Exact for every input whose coordinates are zero or of magnitude in `[1e-40, 1e40]`:
+/// coplanar and cospherical configurations (grids, points on a sphere) are resolved by
+/// symbolic perturbation, so no tetrahedron is flat. Duplicates are merged into their
+/// first occurrence and listed in [`Tetrahedralization::duplicates`].
+///
+/// ```
+/// use shatter_geom::{DVec3, delaunay::tetrahedralize};
+/// let mut pts = Vec::new();
+/// for i in 0..8 {
+///     pts.push(DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, (i >> 2) as f64));
+/// }
+/// pts.push(DVec3::ZERO); // a duplicate of point 0
+/// let t = tetrahedralize(&pts).expect("a cube");
+/// assert_eq!(t.unique_points, 8);
+/// assert_eq!(t.representative[8], 0);
+/// assert!((t.volume(&pts) - 1.0).abs() < 1e-12);
+/// ```
+pub fn tetrahedralize(points: &[DVec3]) -> Result<Tetrahedralization, DelaunayError> {
+    check_input(points)?;
+    let n = points.len();
+    if n >= (1 << 31) - 1 {
+        return Err(DelaunayError::TooLarge { points: n });
+    }
+    if n < 4 {
+        return Err(DelaunayError::TooFewPoints {
+            distinct: count_distinct(points),
+        });
+    }
+    let order = brio_order(points);
+    let mut pts = Vec::with_capacity(n + 1);
+    pts.push([f64::NAN; 3]);
+    pts.extend(order.iter().map(|&i| points[i as usize].to_array()));
+    let mut mesh = Mesh::new(pts);
+    let first = first_simplex(&mesh.pts).ok_or_else(|| {
+        let distinct = count_distinct(points);
+        if distinct < 4 {
+            DelaunayError::TooFewPoints { distinct }
+        } else {
+            DelaunayError::AllCoplanar { distinct }
+        }
+    })?;
+    let [a, b, c, d] = first;
+    let p = |k: u32| &mesh.pts[k as usize];
+    if orient(p(a), p(b), p(c), p(d)) > 0.0 {
+        mesh.init(a, b, c, d);
+    } else {
+        mesh.init(a, b, d, c);
+    }
+    // Merged duplicates as (internal slot, internal vertex it coincides with).
+    let mut dups: Vec<(u32, u32)> = Vec::new();
+    for s in 1..=n as u32 {
+        if first.contains(&s) {
+            continue;
+        }
+        let q = mesh.pts[s as usize];
+        match mesh.locate(&q) {
+            Location::Duplicate(w) => dups.push((s, w)),
+            Location::Conflict(t) => mesh.insert(s, t, n)?,
+        }
+    }
+    Ok(finish(mesh, order, &dups))
+}
+
+/// Rejects non-finite coordinates and magnitudes where the predicates would not be exact.
+fn check_input(points: &[DVec3]) -> Result<(), DelaunayError> {
+    for (index, p) in points.iter().enumerate() {
+        for value in p.to_array() {
+            if !value.is_finite() {
+                return Err(DelaunayError::NonFinite { index });
+            }
+            let m = value.abs();
+            if m > MAX_MAGNITUDE || (m != 0.0 && m < MIN_MAGNITUDE) {
+                return Err(DelaunayError::OutOfRange { index, value });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Number of distinct points (exact comparison; `-0.0 == 0.0`).
+fn count_distinct(points: &[DVec3]) -> usize {
+    let mut v: Vec<[f64; 3]> = points
+        .iter()
+        .map(|p| (*p + DVec3::ZERO).to_array())
+        .collect();
+    v.sort_unstable_by(|a, b| {
+        a[0].total_cmp(&b[0])
+            .then(a[1].total_cmp(&b[1]))
+            .then(a[2].total_cmp(&b[2]))
+    });
+    v.dedup();
+    v.len()
+}
+
+/// Four affinely independent points, in insertion order: the first point, the first one
+/// distinct from it, the first one off their line and the first one off their plane.
+fn first_simplex(pts: &[[f64; 3]]) -> Option<[u32; 4]> {
+    let n = pts.len();
+    let a = 1;
+    let b = (2..n).find(|&s| pts[s] != pts[a])?;
+    let c = (b + 1..n).find(|&s| !collinear(&pts[a], &pts[b], &pts[s]))?;
+    let d = (c + 1..n).find(|&s| orient(&pts[a], &pts[b], &pts[c], &pts[s]) != 0.0)?;
+    Some([a as u32, b as u32, c as u32, d as u32])
+}
+
+/// Exact collinearity: all three coordinate-plane projections are degenerate.
+fn collinear(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3]) -> bool {
+    let o = |i: usize, j: usize| {
+        robust::orient2d(
+            Coord { x: a[i], y: a[j] },
+            Coord { x: b[i], y: b[j] },
+            Coord { x: c[i], y: c[j] },
+        )
+    };
+    o(0, 1) == 0.0 && o(1, 2) == 0.0 && o(0, 2) == 0.0
+}

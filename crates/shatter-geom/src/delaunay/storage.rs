@@ -1,0 +1,197 @@
+//! Index-based tetrahedron storage shared by the construction steps.
+//!
+//! See the module docs of [`super`] for the layout. Vertex `0` is the infinite vertex;
+//! input points live at internal indices `1..=n` in insertion (BRIO) order.
+
+use super::types::{DelaunayError, FACES};
+
+/// The infinite vertex.
+pub(crate) const INF: u32 = 0;
+/// Bit of `tv[t][3]` marking a tetrahedron of the current cavity.
+pub(crate) const MARK: u32 = 1 << 31;
+/// `tv[t][0]` of a free (deleted, reusable) slot.
+pub(crate) const DEAD: u32 = u32::MAX;
+/// Most tetrahedra the packed adjacency (`tet << 2 | face`) can address.
+pub(crate) const MAX_TETS: usize = 1 << 30;
+
+/// One face of the cavity boundary, recorded while the cavity grows.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BoundaryFace {
+    /// Vertices of the new tetrahedron: the cavity tetrahedron's, with the new point at `apex`.
+    pub verts: [u32; 4],
+    /// Packed adjacency (`tet << 2 | face`) of the tetrahedron outside the cavity.
+    pub outer: u32,
+    /// Position of the new point in `verts` (the face opposite it is the boundary face).
+    pub apex: u8,
+}
+
+/// Entry of the edge table that glues the new tetrahedra to each other.
+#[derive(Clone, Copy, Default)]
+pub(crate) struct EdgeSlot {
+    pub u: u32,
+    pub v: u32,
+    pub stamp: u32,
+    pub val: u32,
+}
+
+/// The triangulation under construction plus the scratch buffers of one insertion.
+pub(crate) struct Mesh {
+    /// Point coordinates by internal index (`pts[0]` is a placeholder for the infinite vertex).
+    pub pts: Vec<[f64; 3]>,
+    /// Vertices of every tetrahedron (internal indices).
+    pub tv: Vec<[u32; 4]>,
+    /// `adj[t][i] = n << 2 | j`: tetrahedron `n` is across the face opposite vertex `i`
+    /// of `t`, and that face is opposite vertex `j` in `n`.
+    pub adj: Vec<[u32; 4]>,
+    /// Free slots.
+    pub free: Vec<u32>,
+    /// A finite tetrahedron near the last inserted point: where the next walk starts.
+    pub last: u32,
+    /// Random state for the walk's face order.
+    pub rng: u32,
+    /// Scratch: cavity tetrahedra.
+    pub cavity: Vec<u32>,
+    /// Scratch: depth-first stack of the cavity search.
+    pub stack: Vec<u32>,
+    /// Scratch: cavity boundary faces.
+    pub boundary: Vec<BoundaryFace>,
+    /// Scratch: open-addressing edge table (power-of-two size), valid where `stamp` matches.
+    pub edges: Vec<EdgeSlot>,
+    /// Current stamp of `edges`.
+    pub stamp: u32,
+}
+
+/// For a new tetrahedron with the new point at position `apex`, the face opposite `j`
+/// (`j != apex`) contains the apex and the directed edge `EDGE[apex][j]` following it in
+/// the face's outward winding. The tetrahedron across that face has the reversed edge.
+pub(crate) const EDGE: [[(u8, u8); 4]; 4] = build_edge_table();
+
+const fn build_edge_table() -> [[(u8, u8); 4]; 4] {
+    let mut t = [[(0u8, 0u8); 4]; 4];
+    let mut apex = 0;
+    while apex < 4 {
+        let mut j = 0;
+        while j < 4 {
+            if j != apex {
+                let f = FACES[j];
+                let mut k = 0;
+                while f[k] != apex {
+                    k += 1;
+                }
+                t[apex][j] = (f[(k + 1) % 3] as u8, f[(k + 2) % 3] as u8);
+            }
+            j += 1;
+        }
+        apex += 1;
+    }
+    t
+}
+
+impl Mesh {
+    /// Empty storage for `pts` (internal order, with the placeholder at 0).
+    pub(crate) fn new(pts: Vec<[f64; 3]>) -> Self {
+        let n = pts.len();
+        // ~6.7 finite tetrahedra per point for uniform points, plus the hull's infinite ones.
+        let cap = n * 27 / 4 + 64;
+        Self {
+            pts,
+            tv: Vec::with_capacity(cap),
+            adj: Vec::with_capacity(cap),
+            free: Vec::new(),
+            last: 0,
+            rng: 0x9E37_79B9,
+            cavity: Vec::with_capacity(64),
+            stack: Vec::with_capacity(64),
+            boundary: Vec::with_capacity(128),
+            edges: vec![EdgeSlot::default(); 512],
+            stamp: 0,
+        }
+    }
+
+    /// Whether tetrahedron `t` has the infinite vertex (`t` must not be marked).
+    #[inline(always)]
+    pub(crate) fn is_infinite(&self, t: u32) -> bool {
+        let v = &self.tv[t as usize];
+        (v[0] == INF) | (v[1] == INF) | (v[2] == INF) | (v[3] == INF)
+    }
+
+    /// A slot for a new tetrahedron (not the cavity's own).
+    #[inline]
+    pub(crate) fn alloc(&mut self, n_points: usize) -> Result<u32, DelaunayError> {
+        if let Some(t) = self.free.pop() {
+            return Ok(t);
+        }
+        let t = self.tv.len();
+        if t >= MAX_TETS {
+            return Err(DelaunayError::TooLarge { points: n_points });
+        }
+        self.tv.push([DEAD; 4]);
+        self.adj.push([u32::MAX; 4]);
+        Ok(t as u32)
+    }
+
+    /// Builds the first tetrahedron `(a, b, c, d)` (positively oriented) and the four
+    /// infinite tetrahedra on its faces.
+    pub(crate) fn init(&mut self, a: u32, b: u32, c: u32, d: u32) {
+        let t0 = [a, b, c, d];
+        self.tv.push(t0);
+        for i in 0..4 {
+            // The face opposite i, seen from the other side, plus the infinite vertex:
+            // replacing vertex i by INF and swapping two others keeps a positive orientation.
+            let mut t = t0;
+            t[i] = INF;
+            let (j, k) = match i {
+                0 => (1, 2),
+                1 => (0, 2),
+                2 => (0, 1),
+                _ => (0, 1),
+            };
+            t.swap(j, k);
+            self.tv.push(t);
+        }
+        self.adj = vec![[u32::MAX; 4]; 5];
+        // Glue by matching faces (25 pairs, once).
+        for s in 0..5 {
+            for i in 0..4 {
+                let mut f: Vec<u32> = (0..4).filter(|&k| k != i).map(|k| self.tv[s][k]).collect();
+                f.sort_unstable();
+                for u in 0..5 {
+                    if u == s {
+                        continue;
+                    }
+                    for j in 0..4 {
+                        let mut g: Vec<u32> =
+                            (0..4).filter(|&k| k != j).map(|k| self.tv[u][k]).collect();
+                        g.sort_unstable();
+                        if f == g {
+                            self.adj[s][i] = (u as u32) << 2 | j as u32;
+                        }
+                    }
+                }
+            }
+        }
+        self.last = 0;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn edge_table_pairs_faces_with_reversed_edges() {
+        // For every face j containing the apex, the apex followed by EDGE[apex][j] is a
+        // rotation of the outward winding FACES[j].
+        for (apex, row) in EDGE.iter().enumerate() {
+            for (j, &(u, v)) in row.iter().enumerate() {
+                if j == apex {
+                    continue;
+                }
+                let f = FACES[j];
+                let k = f.iter().position(|&x| x == apex).expect("apex on face");
+                assert_eq!((f[(k + 1) % 3], f[(k + 2) % 3]), (u as usize, v as usize));
+                assert!(u as usize != j && v as usize != j);
+            }
+        }
+    }
+}

@@ -1,0 +1,154 @@
+//! Clipping a closed solid by a plane, keeping the part on the plane's negative side as
+//! a closed solid (the cut is capped; see [`super::cap`]).
+
+use std::collections::{HashMap, HashSet};
+
+use glam::DVec3;
+
+use super::cap::{Covering, triangulate_cap};
+use super::piece::Piece;
+
+/// An oriented plane `n · x = d`; its negative side `n · x < d` is kept by [`clip`].
+/// `tag` is written on the cap triangles the plane creates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Plane {
+    pub n: DVec3,
+    pub d: f64,
+    pub tag: u64,
+}
+
+impl Plane {
+    /// The same plane with the other side kept (negation is exact in floating point, so
+    /// both sides classify every vertex identically and share their cut vertices).
+    pub fn flipped(self) -> Self {
+        Self {
+            n: -self.n,
+            d: -self.d,
+            tag: self.tag,
+        }
+    }
+
+    /// Signed distance times `|n|`.
+    #[inline]
+    pub fn eval(&self, p: DVec3) -> f64 {
+        self.n.dot(p) - self.d
+    }
+}
+
+/// Clips `piece` by `plane`, keeping the closed part on the negative side.
+///
+/// Vertices within `eps · |n|` of the plane count as lying on it. Triangles with a
+/// vertex on each side are split at the edges' intersections, computed once per edge
+/// from its lower-indexed end so that both triangles of an edge share the new vertex.
+/// The boundary edges of what is kept all lie on the plane; they bound the cap, which
+/// is triangulated and tagged `plane.tag`, or, where it covers an original face lying in
+/// the plane, tagged like that face. Returns `None` when the plane misses the piece
+/// (everything is kept), so callers can skip the copy.
+pub(crate) fn clip(piece: &Piece, plane: &Plane, eps: f64) -> Option<Piece> {
+    let tol = eps * plane.n.length();
+    let s: Vec<f64> = piece
+        .pos
+        .iter()
+        .map(|&p| {
+            let v = plane.eval(p);
+            if v.abs() <= tol { 0.0 } else { v }
+        })
+        .collect();
+    let any_pos = s.iter().any(|&v| v > 0.0);
+    if !any_pos {
+        return None;
+    }
+    if !s.iter().any(|&v| v < 0.0) {
+        return Some(Piece::default());
+    }
+
+    let mut out = Piece {
+        pos: piece.pos.clone(),
+        tris: Vec::with_capacity(piece.tris.len()),
+        tags: Vec::with_capacity(piece.tris.len()),
+    };
+    // Per vertex of `out`: does it lie on the plane?
+    let mut on_plane: Vec<bool> = s.iter().map(|&v| v == 0.0).collect();
+    let mut cut: HashMap<(u32, u32), u32> = HashMap::new();
+    let mut coverings: Vec<Covering> = Vec::new();
+
+    for (t, tri) in piece.tris.iter().enumerate() {
+        let sv = tri.map(|i| s[i as usize]);
+        let neg = sv.iter().filter(|&&v| v < 0.0).count();
+        let pos = sv.iter().filter(|&&v| v > 0.0).count();
+        let tag = piece.tags[t];
+        if pos == 0 && neg == 0 {
+            // A face lying in the plane: the cap replaces it. If it faces the positive
+            // side it bounds the kept part there; remember it so the cap inherits its tag.
+            let [a, b, c] = tri.map(|i| piece.pos[i as usize]);
+            if (b - a).cross(c - a).dot(plane.n) > 0.0 {
+                coverings.push(Covering {
+                    corners: [a, b, c],
+                    tag,
+                });
+            }
+            continue;
+        }
+        if pos == 0 {
+            out.tris.push(*tri);
+            out.tags.push(tag);
+            continue;
+        }
+        if neg == 0 {
+            continue;
+        }
+        // Negative part of a straddling triangle: at most a quadrilateral.
+        let mut poly: [u32; 4] = [0; 4];
+        let mut m = 0;
+        for k in 0..3 {
+            let (i, j) = (tri[k], tri[(k + 1) % 3]);
+            let (si, sj) = (s[i as usize], s[j as usize]);
+            if si <= 0.0 {
+                poly[m] = i;
+                m += 1;
+            }
+            if (si < 0.0 && sj > 0.0) || (si > 0.0 && sj < 0.0) {
+                let key = (i.min(j), i.max(j));
+                let v = *cut.entry(key).or_insert_with(|| {
+                    let (a, b) = key;
+                    let (pa, pb) = (piece.pos[a as usize], piece.pos[b as usize]);
+                    let (sa, sb) = (s[a as usize], s[b as usize]);
+                    let tt = sa / (sa - sb);
+                    out.pos.push(pa + (pb - pa) * tt);
+                    on_plane.push(true);
+                    (out.pos.len() - 1) as u32
+                });
+                poly[m] = v;
+                m += 1;
+            }
+        }
+        for k in 1..m - 1 {
+            out.tris.push([poly[0], poly[k], poly[k + 1]]);
+            out.tags.push(tag);
+        }
+    }
+
+    // Boundary edges of the kept surface: directed edges whose reverse is missing.
+    let mut directed: HashSet<(u32, u32)> = HashSet::with_capacity(out.tris.len() * 3);
+    for t in &out.tris {
+        for k in 0..3 {
+            directed.insert((t[k], t[(k + 1) % 3]));
+        }
+    }
+    let mut boundary: Vec<(u32, u32)> = Vec::new();
+    for t in &out.tris {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            if !directed.contains(&(b, a)) && on_plane[a as usize] && on_plane[b as usize] {
+                boundary.push((a, b));
+            }
+        }
+    }
+    if !boundary.is_empty() {
+        let cap = triangulate_cap(&out.pos, &boundary, plane, &coverings);
+        out.tris.extend(cap.iter().map(|c| c.0));
+        out.tags.extend(cap.iter().map(|c| c.1));
+    }
+    out.compact();
+    Some(out)
+}

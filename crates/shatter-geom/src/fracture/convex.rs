@@ -1,0 +1,133 @@
+//! Convex pieces for collision: a convex fragment is one piece; a concave one is cut
+//! along its most violated face planes until the pieces are convex.
+//!
+//! (Cutting with the exact plane clipper rather than merging Delaunay tetrahedra keeps
+//! the pieces an exact cover of the fragment and needs no hull computations.)
+
+use glam::DVec3;
+
+use super::clip::{Plane, clip};
+use super::piece::{Piece, SURFACE};
+
+/// Relative tolerance (of the fragment's size) for convexity tests.
+const CONVEX_TOL: f64 = 1e-2;
+/// Pieces smaller than this fraction of the fragment are dropped.
+const MIN_PIECE_FRACTION: f64 = 1e-3;
+/// At most this many convex pieces per fragment.
+const MAX_PIECES: usize = 16;
+
+/// Is the closed solid convex: does every vertex lie behind (or within `tol` of) every
+/// face's plane?
+pub(crate) fn is_convex(piece: &Piece, tol: f64) -> bool {
+    piece.tris.iter().all(|t| {
+        let [a, b, c] = t.map(|i| piece.pos[i as usize]);
+        let n = (b - a).cross(c - a);
+        let len = n.length();
+        if len == 0.0 {
+            return true;
+        }
+        let n = n / len;
+        piece.pos.iter().all(|&p| n.dot(p - a) <= tol)
+    })
+}
+
+/// Convex pieces of a closed fragment (each with a non-degenerate volume).
+pub(crate) fn convex_pieces(piece: &Piece) -> Vec<Vec<DVec3>> {
+    let tol = CONVEX_TOL * super::voronoi::mesh_scale(piece);
+    if is_convex(piece, tol) {
+        return vec![piece.pos.clone()];
+    }
+    decompose(piece, tol).unwrap_or_else(|| vec![piece.pos.clone()])
+}
+
+/// Volume of the tetrahedron `[a, b, c, d]` (signed).
+pub(crate) fn tet_volume(p: [DVec3; 4]) -> f64 {
+    (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])) / 6.0
+}
+
+/// Outward faces of a positively oriented tetrahedron, indexed by the opposite vertex.
+pub(crate) const TET_FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
+
+/// Splits a concave solid along the plane of its most violated face (the face with a
+/// vertex farthest in front of it), again and again, worst piece first, until every
+/// piece is convex within `tol` or `MAX_PIECES` is reached. The clipping is exact, so
+/// the pieces cover the fragment without gaps; pieces under `MIN_PIECE_FRACTION` of it
+/// are dropped (their volume is negligible for collision).
+fn decompose(piece: &Piece, tol: f64) -> Option<Vec<Vec<DVec3>>> {
+    let total = piece.volume();
+    if total <= 0.0 {
+        return None;
+    }
+    let eps = 1e-10 * tol.max(f64::MIN_POSITIVE) / CONVEX_TOL;
+    // (violation, face plane, piece)
+    let mut work: Vec<(f64, Option<Plane>, Piece)> = vec![worst_face(piece, tol, piece.clone())];
+    loop {
+        if work.len() >= MAX_PIECES {
+            break;
+        }
+        let Some(k) = (0..work.len())
+            .filter(|&k| work[k].1.is_some())
+            .max_by(|&a, &b| work[a].0.total_cmp(&work[b].0).then(b.cmp(&a)))
+        else {
+            break;
+        };
+        let (_, plane, p) = work.swap_remove(k);
+        let Some(plane) = plane else { break };
+        let mut parts = Vec::new();
+        for side in [plane, plane.flipped()] {
+            match clip(&p, &side, eps) {
+                None => parts.push(p.clone()),
+                Some(q) if !q.is_empty() => parts.extend(q.components()),
+                Some(_) => {}
+            }
+        }
+        if parts.len() < 2 {
+            // No progress (rounding): keep the piece as it is.
+            work.push((0.0, None, p));
+            continue;
+        }
+        for q in parts {
+            work.push(worst_face(&q, tol, q.clone()));
+        }
+    }
+    let pieces: Vec<Vec<DVec3>> = work
+        .into_iter()
+        .filter(|(_, _, p)| p.volume() >= MIN_PIECE_FRACTION * total)
+        .map(|(_, _, p)| p.pos)
+        .collect();
+    if pieces.is_empty() {
+        None
+    } else {
+        Some(pieces)
+    }
+}
+
+/// The most violated face of `p` as a plane (`None` when convex within `tol`).
+fn worst_face(p: &Piece, tol: f64, owned: Piece) -> (f64, Option<Plane>, Piece) {
+    let mut best: (f64, Option<Plane>) = (tol, None);
+    for t in &p.tris {
+        let [a, b, c] = t.map(|i| p.pos[i as usize]);
+        let n = (b - a).cross(c - a);
+        let len = n.length();
+        if len == 0.0 {
+            continue;
+        }
+        let n = n / len;
+        let v = p
+            .pos
+            .iter()
+            .map(|&q| n.dot(q - a))
+            .fold(f64::NEG_INFINITY, f64::max);
+        if v > best.0 {
+            best = (
+                v,
+                Some(Plane {
+                    n,
+                    d: n.dot(a),
+                    tag: SURFACE,
+                }),
+            );
+        }
+    }
+    (best.0, best.1, owned)
+}

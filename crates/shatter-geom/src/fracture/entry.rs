@@ -1,0 +1,173 @@
+//! The public entry point: validate the mesh, run the method, build the fragments.
+
+use glam::DVec3;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
+use super::convex::convex_pieces;
+use super::massprops::mass_properties;
+use super::merge::merge_small;
+use super::params::{FractureError, FractureParams, Method, Pattern};
+use super::piece::{Piece, SURFACE};
+use super::seeds::{seeds, splinter_metric};
+use super::slice::{random_planes, slice};
+use super::tetra::{SLIVER_VOLUME_FRACTION, TetraOptions, tetra};
+use super::types::{Bond, Fracture, Fragment};
+use super::validate::validated_piece;
+use super::voronoi::{mesh_scale, voronoi};
+use crate::TriMesh;
+
+/// Relative distance (of the mesh's size) within which a vertex counts as on a plane.
+const PLANE_EPS: f64 = 1e-10;
+
+/// Fractures a closed mesh.
+///
+/// The mesh is welded (vertices at equal positions merged) and must then be a closed,
+/// consistently wound two-manifold; an inward-wound mesh is flipped, with a warning in
+/// [`Fracture::warnings`]. The same parameters and seed always give the same result.
+///
+/// ```
+/// use shatter_geom::fracture::{fracture, FractureParams, Method, Pattern};
+/// use shatter_geom::{DVec3, TriMesh};
+///
+/// // A unit cube, 8 shared corners.
+/// let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+/// let cube = TriMesh::new(
+///     vec![p(0., 0., 0.), p(1., 0., 0.), p(1., 1., 0.), p(0., 1., 0.),
+///          p(0., 0., 1.), p(1., 0., 1.), p(1., 1., 1.), p(0., 1., 1.)],
+///     vec![[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4],
+///          [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6], [3, 0, 4], [3, 4, 7]],
+/// );
+/// let params = FractureParams {
+///     method: Method::Voronoi { pieces: 8, pattern: Pattern::Uniform, impact: None, seeds: None },
+///     seed: 1,
+/// };
+/// let result = fracture(&cube, &params)?;
+/// assert!(result.fragments.len() >= 2);
+/// assert!((result.total_volume() - 1.0).abs() < 1e-9);
+/// assert!(result.bonds.iter().all(|b| b.a < b.b && b.area > 0.0));
+/// # Ok::<(), shatter_geom::fracture::FractureError>(())
+/// ```
+pub fn fracture(mesh: &TriMesh, params: &FractureParams) -> Result<Fracture, FractureError> {
+    let (piece, mut warnings) = validated_piece(mesh)?;
+    let mut rng = ChaCha8Rng::seed_from_u64(params.seed);
+    let scale = mesh_scale(&piece);
+    let eps = PLANE_EPS * scale;
+    let volume = piece.volume();
+    let (fragments, bonds) = match &params.method {
+        Method::Tetra {
+            random_vertices,
+            skip,
+            center,
+            placement,
+        } => {
+            let opt = TetraOptions {
+                random_vertices: *random_vertices,
+                skip: *skip,
+                center: *center,
+                placement: *placement,
+            };
+            tetra(&piece, volume, &opt, &mut rng, &mut warnings)?
+        }
+        Method::Voronoi {
+            pieces,
+            pattern,
+            impact,
+            seeds: given,
+        } => {
+            let points = match given {
+                Some(list) => {
+                    check_points(list, "seed")?;
+                    if list.is_empty() {
+                        return Err(FractureError::TooFewPieces(0));
+                    }
+                    list.clone()
+                }
+                None => {
+                    if *pieces < 1 {
+                        return Err(FractureError::TooFewPieces(*pieces));
+                    }
+                    if let Some(i) = impact {
+                        check_points(std::slice::from_ref(i), "impact point")?;
+                    }
+                    seeds(&piece, *pieces, *pattern, *impact, &mut rng)
+                }
+            };
+            let metric = if *pattern == Pattern::Splinter && given.is_none() {
+                splinter_metric(&piece)
+            } else {
+                DVec3::ONE
+            };
+            let (cells, bonds) = voronoi(&piece, &points, metric, eps);
+            finish_cut(cells, bonds, volume, &mut warnings)
+        }
+        Method::Slice { pieces, planes } => {
+            let planes = match planes {
+                Some(list) => {
+                    for (index, (p, n)) in list.iter().enumerate() {
+                        if !p.is_finite() || !n.is_finite() || n.length_squared() == 0.0 {
+                            return Err(FractureError::BadInput {
+                                what: "plane",
+                                index,
+                            });
+                        }
+                    }
+                    list.clone()
+                }
+                None => {
+                    if *pieces < 1 {
+                        return Err(FractureError::TooFewPieces(*pieces));
+                    }
+                    random_planes(&piece, *pieces, &mut rng)
+                }
+            };
+            let (pieces, bonds) = slice(&piece, &planes, eps);
+            finish_cut(pieces, bonds, volume, &mut warnings)
+        }
+    };
+    let fragments: Vec<Fragment> = fragments;
+    if fragments.is_empty() {
+        return Err(FractureError::NoFragments);
+    }
+    Ok(Fracture {
+        fragments,
+        bonds,
+        warnings,
+    })
+}
+
+fn check_points(list: &[DVec3], what: &'static str) -> Result<(), FractureError> {
+    match list.iter().position(|p| !p.is_finite()) {
+        Some(index) => Err(FractureError::BadInput { what, index }),
+        None => Ok(()),
+    }
+}
+
+/// Fragments of a cut method: small pieces merged into neighbours, then built.
+fn finish_cut(
+    pieces: Vec<Piece>,
+    bonds: Vec<Bond>,
+    volume: f64,
+    warnings: &mut Vec<String>,
+) -> (Vec<Fragment>, Vec<Bond>) {
+    let (pieces, bonds, lonely) = merge_small(pieces, bonds, SLIVER_VOLUME_FRACTION * volume);
+    if lonely > 0 {
+        warnings.push(format!(
+            "{lonely} fragments below the sliver threshold had no neighbour to merge into"
+        ));
+    }
+    (pieces.iter().map(fragment).collect(), bonds)
+}
+
+/// A fragment from a closed cut piece.
+pub(crate) fn fragment(p: &Piece) -> Fragment {
+    let (volume, centroid, inertia) = mass_properties(&p.pos, &p.tris);
+    Fragment {
+        mesh: TriMesh::new(p.pos.clone(), p.tris.clone()),
+        interior: p.tags.iter().map(|&t| t != SURFACE).collect(),
+        convex_pieces: convex_pieces(p),
+        volume,
+        centroid,
+        inertia,
+    }
+}

@@ -1,0 +1,162 @@
+//! The working representation of a solid during fracture: an indexed, welded triangle
+//! mesh whose triangles carry the tag of the cut that created them.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+
+use crate::TriMesh;
+
+/// Tag of a triangle on the original surface (not created by a cut).
+pub(crate) const SURFACE: u64 = u64::MAX;
+
+/// A closed solid being cut: welded positions, triangles and one tag per triangle.
+///
+/// A tag is [`SURFACE`] for original surface triangles, or the id of the plane whose cap
+/// created the triangle (the methods give planes ids they can decode for bonds).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Piece {
+    pub pos: Vec<DVec3>,
+    pub tris: Vec<[u32; 3]>,
+    pub tags: Vec<u64>,
+}
+
+impl Piece {
+    /// A piece from a mesh, welding vertices at exactly equal positions; all triangles
+    /// are surface triangles.
+    pub fn from_mesh_welded(mesh: &TriMesh) -> Self {
+        let mut map: HashMap<[u64; 3], u32> = HashMap::with_capacity(mesh.positions.len());
+        let mut pos = Vec::with_capacity(mesh.positions.len());
+        let remap: Vec<u32> = mesh
+            .positions
+            .iter()
+            .map(|p| {
+                // +0.0 and -0.0 are the same point.
+                let key = [p.x + 0.0, p.y + 0.0, p.z + 0.0].map(f64::to_bits);
+                *map.entry(key).or_insert_with(|| {
+                    pos.push(*p);
+                    (pos.len() - 1) as u32
+                })
+            })
+            .collect();
+        let tris: Vec<[u32; 3]> = mesh
+            .triangles
+            .iter()
+            .map(|t| t.map(|i| remap[i as usize]))
+            .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+            .collect();
+        let tags = vec![SURFACE; tris.len()];
+        Self { pos, tris, tags }
+    }
+
+    /// `true` when the piece has no triangles.
+    pub fn is_empty(&self) -> bool {
+        self.tris.is_empty()
+    }
+
+    /// Signed volume (positive for a closed outward solid).
+    pub fn volume(&self) -> f64 {
+        let Some(&o) = self.pos.first() else {
+            return 0.0;
+        };
+        self.tris
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| self.pos[i as usize] - o);
+                a.dot(b.cross(c))
+            })
+            .sum::<f64>()
+            / 6.0
+    }
+
+    /// Drops vertices no triangle uses and renumbers the rest (order kept).
+    pub fn compact(&mut self) {
+        let mut remap = vec![u32::MAX; self.pos.len()];
+        let mut pos = Vec::new();
+        for t in &mut self.tris {
+            for i in t.iter_mut() {
+                let r = &mut remap[*i as usize];
+                if *r == u32::MAX {
+                    *r = pos.len() as u32;
+                    pos.push(self.pos[*i as usize]);
+                }
+                *i = *r;
+            }
+        }
+        self.pos = pos;
+    }
+
+    /// Splits the piece into its edge-connected components, in order of their first
+    /// triangle. Each component is compacted.
+    pub fn components(self) -> Vec<Piece> {
+        let n = self.tris.len();
+        let mut uf = UnionFind::new(n);
+        let mut edge_owner: HashMap<(u32, u32), usize> = HashMap::with_capacity(n * 3 / 2);
+        for (t, tri) in self.tris.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                let key = (a.min(b), a.max(b));
+                match edge_owner.get(&key) {
+                    Some(&o) => uf.union(o, t),
+                    None => {
+                        edge_owner.insert(key, t);
+                    }
+                }
+            }
+        }
+        let mut comp_of_root: HashMap<usize, usize> = HashMap::new();
+        let mut out: Vec<Piece> = Vec::new();
+        for t in 0..n {
+            let r = uf.find(t);
+            let c = *comp_of_root.entry(r).or_insert_with(|| {
+                out.push(Piece {
+                    pos: self.pos.clone(),
+                    ..Piece::default()
+                });
+                out.len() - 1
+            });
+            out[c].tris.push(self.tris[t]);
+            out[c].tags.push(self.tags[t]);
+        }
+        if out.len() == 1 {
+            // Avoid the extra copy's compaction cost being wasted: still compact.
+            out[0].compact();
+            return out;
+        }
+        for p in &mut out {
+            p.compact();
+        }
+        out
+    }
+}
+
+/// A small union-find with path halving.
+#[derive(Debug, Clone)]
+pub(crate) struct UnionFind {
+    parent: Vec<usize>,
+}
+
+impl UnionFind {
+    pub fn new(n: usize) -> Self {
+        Self {
+            parent: (0..n).collect(),
+        }
+    }
+
+    pub fn find(&mut self, mut x: usize) -> usize {
+        while self.parent[x] != x {
+            self.parent[x] = self.parent[self.parent[x]];
+            x = self.parent[x];
+        }
+        x
+    }
+
+    /// Joins the sets of `a` and `b`; the smaller root index becomes the root.
+    pub fn union(&mut self, a: usize, b: usize) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra != rb {
+            let (lo, hi) = (ra.min(rb), ra.max(rb));
+            self.parent[hi] = lo;
+        }
+    }
+}

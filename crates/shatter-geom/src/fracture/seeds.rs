@@ -1,0 +1,145 @@
+//! Seed patterns for Voronoi fracture, and uniform sampling inside a solid.
+
+use glam::DVec3;
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
+
+use super::massprops::winding_number;
+use super::params::Pattern;
+use super::piece::Piece;
+
+/// Tries per wanted point before sampling gives up on the inside test.
+const TRIES_PER_POINT: usize = 200;
+
+/// Samples inside a closed solid by rejection from its bounds.
+pub(crate) struct InsideSampler<'a> {
+    piece: &'a Piece,
+    lo: DVec3,
+    hi: DVec3,
+}
+
+impl<'a> InsideSampler<'a> {
+    pub fn new(piece: &'a Piece) -> Self {
+        let (lo, hi) = bounds(&piece.pos);
+        Self { piece, lo, hi }
+    }
+
+    /// Is `p` inside the solid?
+    pub fn contains(&self, p: DVec3) -> bool {
+        p.cmpge(self.lo).all()
+            && p.cmple(self.hi).all()
+            && winding_number(&self.piece.pos, &self.piece.tris, p) > 0.5
+    }
+
+    /// A uniform point of the bounding box.
+    pub fn in_box(&self, rng: &mut ChaCha8Rng) -> DVec3 {
+        let t = DVec3::new(rng.random(), rng.random(), rng.random());
+        self.lo + (self.hi - self.lo) * t
+    }
+
+    /// Draws from `draw` until the point is inside (bounded tries; the last draw is
+    /// returned if none was inside, which the caller's cells tolerate).
+    pub fn inside_from(
+        &self,
+        rng: &mut ChaCha8Rng,
+        mut draw: impl FnMut(&mut ChaCha8Rng) -> DVec3,
+    ) -> DVec3 {
+        let mut p = draw(rng);
+        for _ in 0..TRIES_PER_POINT {
+            if self.contains(p) {
+                return p;
+            }
+            p = draw(rng);
+        }
+        p
+    }
+
+    /// A uniform point inside the solid.
+    pub fn uniform(&self, rng: &mut ChaCha8Rng) -> DVec3 {
+        self.inside_from(rng, |r| self.in_box(r))
+    }
+
+    pub fn bounds(&self) -> (DVec3, DVec3) {
+        (self.lo, self.hi)
+    }
+}
+
+/// Axis-aligned bounds of a non-empty point set.
+pub(crate) fn bounds(pos: &[DVec3]) -> (DVec3, DVec3) {
+    pos.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), &p| (lo.min(p), hi.max(p)),
+    )
+}
+
+/// A standard normal deviate (Box–Muller).
+pub(crate) fn gaussian(rng: &mut ChaCha8Rng) -> f64 {
+    let u1: f64 = rng.random::<f64>().max(f64::MIN_POSITIVE);
+    let u2: f64 = rng.random();
+    (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+}
+
+/// A uniform random unit vector.
+pub(crate) fn unit_vector(rng: &mut ChaCha8Rng) -> DVec3 {
+    let z: f64 = rng.random_range(-1.0..=1.0);
+    let phi: f64 = rng.random_range(0.0..std::f64::consts::TAU);
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    DVec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+/// `k` seeds of `pattern` inside the solid. `impact` is used by [`Pattern::Radial`]
+/// (default: a random surface vertex).
+pub(crate) fn seeds(
+    piece: &Piece,
+    k: usize,
+    pattern: Pattern,
+    impact: Option<DVec3>,
+    rng: &mut ChaCha8Rng,
+) -> Vec<DVec3> {
+    let sampler = InsideSampler::new(piece);
+    let (lo, hi) = sampler.bounds();
+    let diag = (hi - lo).length();
+    match pattern {
+        Pattern::Uniform | Pattern::Splinter => (0..k).map(|_| sampler.uniform(rng)).collect(),
+        Pattern::Clustered => {
+            let clusters = ((k as f64).sqrt() / 2.0).ceil().max(1.0) as usize;
+            let centres: Vec<DVec3> = (0..clusters).map(|_| sampler.uniform(rng)).collect();
+            let sigma = 0.08 * diag;
+            (0..k)
+                .map(|i| {
+                    let c = centres[i % clusters];
+                    sampler.inside_from(rng, |r| {
+                        c + DVec3::new(gaussian(r), gaussian(r), gaussian(r)) * sigma
+                    })
+                })
+                .collect()
+        }
+        Pattern::Radial => {
+            let centre = impact.unwrap_or_else(|| piece.pos[rng.random_range(0..piece.pos.len())]);
+            (0..k)
+                .map(|_| {
+                    sampler.inside_from(rng, |r| {
+                        // Radius ∝ u³: density falls off with distance from the impact.
+                        let u: f64 = r.random();
+                        centre + unit_vector(r) * (diag * u * u * u)
+                    })
+                })
+                .collect()
+        }
+    }
+}
+
+/// The metric weights of [`Pattern::Splinter`]: distances along the longest axis of the
+/// bounds count a quarter, so cells are four times longer along it.
+pub(crate) fn splinter_metric(piece: &Piece) -> DVec3 {
+    let (lo, hi) = bounds(&piece.pos);
+    let e = hi - lo;
+    let axis = if e.x >= e.y && e.x >= e.z {
+        DVec3::X
+    } else if e.y >= e.z {
+        DVec3::Y
+    } else {
+        DVec3::Z
+    };
+    DVec3::ONE - axis * (1.0 - 1.0 / 16.0)
+}

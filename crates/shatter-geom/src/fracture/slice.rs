@@ -1,0 +1,68 @@
+//! Slice fracture: planes cutting every current piece in two.
+
+use glam::DVec3;
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
+
+use super::bonds::cap_bonds;
+use super::clip::{Plane, clip};
+use super::piece::Piece;
+use super::seeds::{bounds, unit_vector};
+use super::types::Bond;
+use super::voronoi::mesh_scale;
+
+/// `k` random planes through the mesh: a random direction through a random point of
+/// the middle half of the bounds (so that most planes cut it).
+pub(crate) fn random_planes(mesh: &Piece, k: usize, rng: &mut ChaCha8Rng) -> Vec<(DVec3, DVec3)> {
+    let (lo, hi) = bounds(&mesh.pos);
+    (0..k)
+        .map(|_| {
+            let t = DVec3::new(
+                rng.random_range(0.25..0.75),
+                rng.random_range(0.25..0.75),
+                rng.random_range(0.25..0.75),
+            );
+            (lo + (hi - lo) * t, unit_vector(rng))
+        })
+        .collect()
+}
+
+/// Cuts `mesh` by every plane `(point, normal)` in turn, each plane cutting all current
+/// pieces; returns the fragments (connected components) and their bonds.
+pub(crate) fn slice(mesh: &Piece, planes: &[(DVec3, DVec3)], eps: f64) -> (Vec<Piece>, Vec<Bond>) {
+    let mut pieces = vec![mesh.clone()];
+    let unit: Vec<(DVec3, DVec3)> = planes.iter().map(|&(p, n)| (p, n.normalize())).collect();
+    for (idx, &(p, n)) in unit.iter().enumerate() {
+        let plane = Plane {
+            n,
+            d: n.dot(p),
+            tag: idx as u64,
+        };
+        let mut next = Vec::with_capacity(pieces.len() * 2);
+        for piece in pieces {
+            match clip(&piece, &plane, eps) {
+                // Entirely on the negative side.
+                None => next.push(piece),
+                Some(neg) => {
+                    let pos = clip(&piece, &plane.flipped(), eps);
+                    if !neg.is_empty() {
+                        next.extend(neg.components());
+                    }
+                    match pos {
+                        None => next.push(piece),
+                        Some(pos) if !pos.is_empty() => next.extend(pos.components()),
+                        Some(_) => {}
+                    }
+                }
+            }
+        }
+        pieces = next;
+    }
+    let scale = mesh_scale(mesh);
+    let plane_of = |tag: u64| {
+        let (p, n) = unit[tag as usize];
+        (n, p)
+    };
+    let bonds = cap_bonds(&pieces, plane_of, 1e-12 * scale * scale);
+    (pieces, bonds)
+}

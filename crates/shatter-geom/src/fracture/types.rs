@@ -1,0 +1,63 @@
+//! The fracture result types.
+
+use glam::{DMat3, DVec3};
+
+use crate::TriMesh;
+
+/// One piece of a fractured object.
+#[derive(Debug, Clone)]
+pub struct Fragment {
+    /// Closed, outward-wound surface of the fragment, in the object's frame.
+    pub mesh: TriMesh,
+    /// Per triangle of `mesh`: `true` for an interior (cut) face, `false` for a face on
+    /// the original surface.
+    pub interior: Vec<bool>,
+    /// Convex pieces for collision: each a point cloud whose convex hull has a
+    /// non-degenerate volume. Their union approximates the fragment.
+    pub convex_pieces: Vec<Vec<DVec3>>,
+    /// Volume of the fragment.
+    pub volume: f64,
+    /// Centre of mass (uniform density).
+    pub centroid: DVec3,
+    /// Inertia tensor about the centroid for unit density.
+    pub inertia: DMat3,
+}
+
+/// A bond between two fragments that share a face.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bond {
+    /// First fragment (index into [`Fracture::fragments`]), `a < b`.
+    pub a: u32,
+    /// Second fragment.
+    pub b: u32,
+    /// Area of the shared face.
+    pub area: f64,
+    /// Centroid of the shared face.
+    pub centroid: DVec3,
+    /// Unit normal of the shared face, pointing from `a` to `b`.
+    pub normal: DVec3,
+}
+
+/// A fractured object: fragments and the bond graph between them.
+#[derive(Debug, Clone, Default)]
+pub struct Fracture {
+    /// The fragments.
+    pub fragments: Vec<Fragment>,
+    /// Bonds between fragments sharing a face, sorted by `(a, b)`, each pair once.
+    pub bonds: Vec<Bond>,
+    /// Repairs and losses worth telling the user about (an inward mesh flipped, tiny
+    /// isolated tetrahedra dropped, ...). Empty when there was nothing to say.
+    pub warnings: Vec<String>,
+}
+
+impl Fracture {
+    /// Sum of the fragments' volumes.
+    pub fn total_volume(&self) -> f64 {
+        self.fragments.iter().map(|f| f.volume).sum()
+    }
+
+    /// The bonds of fragment `i` (either side), in bond order.
+    pub fn bonds_of(&self, i: u32) -> impl Iterator<Item = &Bond> {
+        self.bonds.iter().filter(move |b| b.a == i || b.b == i)
+    }
+}

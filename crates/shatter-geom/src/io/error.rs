@@ -1,0 +1,89 @@
+//! Errors of mesh import and export.
+
+use std::path::PathBuf;
+
+use thiserror::Error;
+
+/// A mesh file could not be read or written. Every variant names the file (or the
+/// source given to an in-memory reader) and the problem.
+#[derive(Debug, Error)]
+pub enum MeshIoError {
+    /// The file could not be opened, read or written.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's error.
+        source: std::io::Error,
+    },
+    /// The extension names no supported format.
+    #[error("{path}: unknown mesh format (expected .obj, .stl, .gltf or .glb)")]
+    UnknownFormat {
+        /// The file.
+        path: PathBuf,
+    },
+    /// A malformed OBJ file.
+    #[error("{path}: {}{message}", line.map(|l| format!("line {l}: ")).unwrap_or_default())]
+    Obj {
+        /// The file.
+        path: PathBuf,
+        /// The 1-based line of the problem, where it can be located.
+        line: Option<usize>,
+        /// What is wrong.
+        message: String,
+    },
+    /// A malformed STL file.
+    #[error("{path}: {message}")]
+    Stl {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+    /// A malformed glTF or GLB file.
+    #[error("{path}: {message}")]
+    Gltf {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+    /// The file holds no triangles.
+    #[error("{path}: no triangles in the file")]
+    NoTriangles {
+        /// The file.
+        path: PathBuf,
+    },
+    /// An exported object's interior flags do not match its triangles.
+    #[error("object {object}: {flags} interior flags for {triangles} triangles")]
+    InteriorFlags {
+        /// The object's name.
+        object: String,
+        /// Number of flags given.
+        flags: usize,
+        /// Number of triangles.
+        triangles: usize,
+    },
+    /// An exported mesh has a triangle index out of range.
+    #[error("object {object}: triangle {triangle} references vertex {index} of {vertices}")]
+    BadIndex {
+        /// The object's name.
+        object: String,
+        /// The triangle.
+        triangle: usize,
+        /// The offending index.
+        index: u32,
+        /// Number of vertices.
+        vertices: usize,
+    },
+}
+
+impl MeshIoError {
+    /// An I/O error on `path`.
+    pub(crate) fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Self::Io {
+            path: path.into(),
+            source,
+        }
+    }
+}

@@ -1,0 +1,287 @@
+//! Exact self-intersection detection: pairs of triangles, sharing no vertex, that touch
+//! or cross. Broad phase: a sparse uniform grid; narrow phase: exact orientation
+//! predicates (`robust::orient3d`, `orient2d`), so touching counts as intersecting and no
+//! tolerance is involved.
+
+use glam::DVec3;
+use robust::{Coord, Coord3D, orient2d, orient3d};
+
+use super::TriMesh;
+use super::check::is_degenerate;
+
+fn c3(p: DVec3) -> Coord3D<f64> {
+    Coord3D {
+        x: p.x,
+        y: p.y,
+        z: p.z,
+    }
+}
+
+fn o3(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
+    orient3d(c3(a), c3(b), c3(c), c3(d))
+}
+
+/// Projection onto the coordinate plane that drops axis `drop`.
+fn c2(p: DVec3, drop: usize) -> Coord<f64> {
+    let (i, j) = match drop {
+        0 => (1, 2),
+        1 => (2, 0),
+        _ => (0, 1),
+    };
+    Coord { x: p[i], y: p[j] }
+}
+
+/// Closed segments `ab` and `cd` in the plane intersect.
+fn segments_meet_2d(a: Coord<f64>, b: Coord<f64>, c: Coord<f64>, d: Coord<f64>) -> bool {
+    let (d1, d2) = (orient2d(a, b, c), orient2d(a, b, d));
+    let (d3, d4) = (orient2d(c, d, a), orient2d(c, d, b));
+    if d1 == 0.0 && d2 == 0.0 {
+        // Collinear: overlap of the projections on the longer axis.
+        let key = |p: Coord<f64>| {
+            if (a.x - b.x).abs() >= (a.y - b.y).abs() {
+                p.x
+            } else {
+                p.y
+            }
+        };
+        let (lo1, hi1) = (key(a).min(key(b)), key(a).max(key(b)));
+        let (lo2, hi2) = (key(c).min(key(d)), key(c).max(key(d)));
+        return lo1 <= hi2 && lo2 <= hi1;
+    }
+    (d1 * d2 <= 0.0) && (d3 * d4 <= 0.0)
+}
+
+/// Point `p` in the closed triangle `abc` (non-degenerate) in the plane.
+fn point_in_triangle_2d(p: Coord<f64>, a: Coord<f64>, b: Coord<f64>, c: Coord<f64>) -> bool {
+    let s = orient2d(a, b, c).signum();
+    [orient2d(a, b, p), orient2d(b, c, p), orient2d(c, a, p)]
+        .iter()
+        .all(|&o| o * s >= 0.0)
+}
+
+/// Two coplanar, non-degenerate triangles intersect (closed sets).
+fn coplanar_meet(t: [DVec3; 3], u: [DVec3; 3]) -> bool {
+    // Drop an axis along which the plane's projection stays non-degenerate.
+    let Some(drop) = (0..3).find(|&k| orient2d(c2(t[0], k), c2(t[1], k), c2(t[2], k)) != 0.0)
+    else {
+        return false;
+    };
+    let t2 = t.map(|p| c2(p, drop));
+    let u2 = u.map(|p| c2(p, drop));
+    for i in 0..3 {
+        for j in 0..3 {
+            if segments_meet_2d(t2[i], t2[(i + 1) % 3], u2[j], u2[(j + 1) % 3]) {
+                return true;
+            }
+        }
+    }
+    point_in_triangle_2d(u2[0], t2[0], t2[1], t2[2])
+        || point_in_triangle_2d(t2[0], u2[0], u2[1], u2[2])
+}
+
+/// Closed segment `de` meets the closed triangle `abc`, whose plane the segment does not
+/// lie in.
+fn segment_meets_triangle(d: DVec3, e: DVec3, [a, b, c]: [DVec3; 3]) -> bool {
+    let (od, oe) = (o3(a, b, c, d), o3(a, b, c, e));
+    if (od > 0.0 && oe > 0.0) || (od < 0.0 && oe < 0.0) || (od == 0.0 && oe == 0.0) {
+        return false;
+    }
+    let s = [o3(d, e, a, b), o3(d, e, b, c), o3(d, e, c, a)];
+    s.iter().all(|&x| x >= 0.0) || s.iter().all(|&x| x <= 0.0)
+}
+
+/// Two non-degenerate triangles intersect (closed sets), decided exactly.
+pub(crate) fn triangles_meet(t: [DVec3; 3], u: [DVec3; 3]) -> bool {
+    // Early exact rejection: one triangle strictly on one side of the other's plane.
+    let strictly_one_side = |s: [f64; 3]| s.iter().all(|&x| x > 0.0) || s.iter().all(|&x| x < 0.0);
+    let u_vs_t = u.map(|p| o3(t[0], t[1], t[2], p));
+    if strictly_one_side(u_vs_t) {
+        return false;
+    }
+    if u_vs_t.iter().all(|&x| x == 0.0) {
+        return coplanar_meet(t, u);
+    }
+    if strictly_one_side(t.map(|p| o3(u[0], u[1], u[2], p))) {
+        return false;
+    }
+    // Non-coplanar: if they meet, an edge of one meets the other.
+    (0..3).any(|i| segment_meets_triangle(t[i], t[(i + 1) % 3], u))
+        || (0..3).any(|i| segment_meets_triangle(u[i], u[(i + 1) % 3], t))
+}
+
+impl TriMesh {
+    /// Pairs of triangles `(s, t)`, `s < t`, that share no vertex (after welding) yet
+    /// touch or cross, decided exactly. Triangles sharing a vertex or an edge are not
+    /// tested against each other (a fold between neighbours is not reported; a mesh that
+    /// passes [`check`](TriMesh::check) has none that matter for inside/outside), and
+    /// zero-area triangles are skipped. At most `limit` pairs are returned. Out-of-range
+    /// indices are skipped.
+    ///
+    /// ```
+    /// use shatter_geom::{DVec3, TriMesh, shapes};
+    /// assert!(shapes::bird().self_intersections(10).is_empty());
+    /// // Two overlapping cubes cross each other.
+    /// let a = shapes::cube();
+    /// let b = a.transformed(DVec3::ONE, DVec3::splat(0.5));
+    /// assert!(!TriMesh::merge(&[a, b]).self_intersections(10).is_empty());
+    /// ```
+    pub fn self_intersections(&self, limit: usize) -> Vec<(u32, u32)> {
+        let mesh = self.welded();
+        let n = mesh.positions.len();
+        let mut boxes: Vec<(DVec3, DVec3, u32)> = Vec::with_capacity(mesh.triangles.len());
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            if tri.iter().any(|&i| i as usize >= n) {
+                continue;
+            }
+            let [a, b, c] = mesh.triangle(t);
+            let finite = a.is_finite() && b.is_finite() && c.is_finite();
+            if !finite
+                || tri[0] == tri[1]
+                || tri[1] == tri[2]
+                || tri[0] == tri[2]
+                || is_degenerate(a, b, c)
+            {
+                continue;
+            }
+            boxes.push((a.min(b).min(c), a.max(b).max(c), t as u32));
+        }
+        let grid = Grid::new(&boxes);
+        let mut found = Vec::new();
+        'cells: for (cell, members) in grid.cells() {
+            for (k, &i) in members.iter().enumerate() {
+                let (lo, hi, s) = boxes[i as usize];
+                for &j in &members[k + 1..] {
+                    let (lo2, hi2, t) = boxes[j as usize];
+                    if lo2.cmpgt(hi).any() || lo.cmpgt(hi2).any() {
+                        continue;
+                    }
+                    // Test each pair once: in the cell holding its boxes' overlap corner.
+                    if grid.cell_of(lo.max(lo2)) != cell {
+                        continue;
+                    }
+                    let (ts, tt) = (mesh.triangles[s as usize], mesh.triangles[t as usize]);
+                    if ts.iter().any(|v| tt.contains(v)) {
+                        continue;
+                    }
+                    if triangles_meet(mesh.triangle(s as usize), mesh.triangle(t as usize)) {
+                        found.push((s.min(t), s.max(t)));
+                        if found.len() >= limit {
+                            break 'cells;
+                        }
+                    }
+                }
+            }
+        }
+        found.sort_unstable();
+        found
+    }
+}
+
+/// Broad phase: a sparse uniform grid of triangle boxes, cells about the size of a
+/// typical triangle, so each pair test is local (linear in practice; a sweep along one
+/// axis was quadratic on large closed meshes).
+struct Grid {
+    origin: DVec3,
+    cell: f64,
+    cells: Vec<([i64; 3], Vec<u32>)>,
+}
+
+impl Grid {
+    fn new(boxes: &[(DVec3, DVec3, u32)]) -> Self {
+        let origin = boxes
+            .iter()
+            .fold(DVec3::splat(f64::INFINITY), |acc, b| acc.min(b.0));
+        let mean_extent = boxes
+            .iter()
+            .map(|(lo, hi, _)| (*hi - *lo).max_element())
+            .sum::<f64>()
+            / boxes.len().max(1) as f64;
+        let cell = if mean_extent > 0.0 && mean_extent.is_finite() {
+            1.5 * mean_extent
+        } else {
+            1.0
+        };
+        let mut grid = Grid {
+            origin,
+            cell,
+            cells: Vec::new(),
+        };
+        // Coarsen until the boxes cover a bounded number of cells in all (a few huge
+        // triangles among small ones would otherwise fill millions).
+        let budget = 16 * boxes.len() as u64 + 1024;
+        loop {
+            let covered = boxes.iter().fold(0u64, |sum, (lo, hi, _)| {
+                let (a, b) = (grid.cell_of(*lo), grid.cell_of(*hi));
+                let span = |k: usize| (b[k].saturating_sub(a[k]) as u64).saturating_add(1);
+                sum.saturating_add(span(0).saturating_mul(span(1)).saturating_mul(span(2)))
+            });
+            if covered <= budget || !grid.cell.is_finite() {
+                break;
+            }
+            grid.cell *= 2.0;
+        }
+        let mut map: std::collections::HashMap<[i64; 3], Vec<u32>> =
+            std::collections::HashMap::new();
+        for (i, (lo, hi, _)) in boxes.iter().enumerate() {
+            let (a, b) = (grid.cell_of(*lo), grid.cell_of(*hi));
+            for x in a[0]..=b[0] {
+                for y in a[1]..=b[1] {
+                    for z in a[2]..=b[2] {
+                        map.entry([x, y, z]).or_default().push(i as u32);
+                    }
+                }
+            }
+        }
+        // Sorted cells: a deterministic order, so a `limit` cuts the same pairs each run.
+        grid.cells = map.into_iter().collect();
+        grid.cells.sort_unstable_by_key(|(k, _)| *k);
+        grid
+    }
+
+    fn cell_of(&self, p: DVec3) -> [i64; 3] {
+        ((p - self.origin) / self.cell)
+            .floor()
+            .as_i64vec3()
+            .to_array()
+    }
+
+    fn cells(&self) -> impl Iterator<Item = ([i64; 3], &[u32])> {
+        self.cells.iter().map(|(k, v)| (*k, v.as_slice()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const T: [DVec3; 3] = [DVec3::ZERO, DVec3::X, DVec3::Y];
+
+    #[test]
+    fn crossing_touching_and_separate_triangles() {
+        let pierce = [
+            DVec3::new(0.2, 0.2, -1.0),
+            DVec3::new(0.2, 0.2, 1.0),
+            DVec3::new(0.3, 0.25, 1.0),
+        ];
+        assert!(triangles_meet(T, pierce));
+        // Touching the interior with a vertex.
+        let touch = [
+            DVec3::new(0.2, 0.2, 0.0),
+            DVec3::new(0.2, 0.2, 1.0),
+            DVec3::new(0.3, 0.25, 1.0),
+        ];
+        assert!(triangles_meet(T, touch));
+        let above = touch.map(|p| p + DVec3::Z * 1e-12);
+        assert!(!triangles_meet(T, above));
+    }
+
+    #[test]
+    fn coplanar_overlap_and_gap() {
+        let shifted = T.map(|p| p + DVec3::new(0.4, 0.4, 0.0));
+        assert!(triangles_meet(T, shifted));
+        let apart = T.map(|p| p + DVec3::new(0.6, 0.6, 0.0));
+        assert!(!triangles_meet(T, apart));
+        let inner = T.map(|p| p * 0.1 + DVec3::new(0.1, 0.1, 0.0));
+        assert!(triangles_meet(T, inner));
+    }
+}
