@@ -63,6 +63,8 @@ pub struct ObjectEntry {
     pub skip: Option<Spanned<i64>>,
     /// The thesis's Center.
     pub center: Option<bool>,
+    /// Tetra random-point placement: `interior` (default) or `thesis`.
+    pub placement: Option<Spanned<String>>,
     /// Random seed.
     pub seed: Option<u64>,
     /// Material preset (default stone).

@@ -339,6 +339,19 @@ fn object(ctx: &Ctx, key: &str, o: &ObjectEntry) -> Result<ObjectSpec, SimError>
         )?,
         skip: count(ctx, &format!("{key}.skip"), &o.skip, 0, defaults.skip)?,
         center: o.center.unwrap_or(defaults.center),
+        thesis_placement: match &o.placement {
+            None => false,
+            Some(p) => match p.get_ref().as_str() {
+                "interior" => false,
+                "thesis" => true,
+                other => {
+                    return Err(SimError::invalid(
+                        ctx.key(&format!("{key}.placement"), p),
+                        format!("unknown placement `{other}` (expected interior or thesis)"),
+                    ));
+                }
+            },
+        },
         seed: o.seed.unwrap_or(defaults.seed),
         grid,
     };
@@ -424,13 +437,12 @@ fn projectile(
     let d = ProjectileSpec::default();
     let shape = match (&p.shape, &p.mesh) {
         (_, Some(m)) => {
-            return Err(SimError::invalid(
-                format!("{key}.mesh"),
-                format!(
-                    "custom projectile meshes ({}) need the mesh importer, not in this build yet",
-                    ctx.path(m)
-                ),
-            ));
+            let path = ctx.path(m);
+            let mesh = shatter_geom::io::load_mesh(&path).map_err(|e| SimError::Io {
+                path: path.clone(),
+                reason: e.to_string(),
+            })?;
+            ProjectileShape::Custom(mesh.positions)
         }
         (Some(s), None) => {
             ProjectileShape::from_name(s.get_ref()).ok_or_else(|| SimError::UnknownShape {
