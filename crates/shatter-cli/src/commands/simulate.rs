@@ -94,7 +94,11 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<SimulateReport> {
         fragments: stats.fragments,
         bonds_total: stats.bonds_total,
         bonds_broken: stats.bonds_broken,
-        millis_per_step: if steps > 0 { total_ms / steps as f64 } else { 0.0 },
+        millis_per_step: if steps > 0 {
+            total_ms / steps as f64
+        } else {
+            0.0
+        },
         diverged: stats.diverged,
         digest: format!("{:016x}", world.digest()),
     };
