@@ -94,3 +94,20 @@ fn a_diverging_body_is_removed_and_reported() {
         }
     }
 }
+
+#[test]
+fn the_debris_cap_removes_the_oldest_loose_fragments() {
+    for model in MODELS {
+        let (mut world, id) = wall_world(model, 5_000.0);
+        let mut settings = *world.settings();
+        settings.max_debris = Some(3);
+        world.set_settings(settings);
+        world.fire(shot(60.0));
+        run(&mut world, 40);
+        let s = world.stats();
+        assert!(s.debris_removed > 0, "{model:?}: nothing was capped");
+        // Every removed body took at least one fragment with it.
+        assert!(s.fragments + s.debris_removed <= 64, "{model:?}");
+        assert!(world.fragment_poses(id).len() < 64, "{model:?}");
+    }
+}
