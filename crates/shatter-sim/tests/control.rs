@@ -111,3 +111,49 @@ fn the_debris_cap_removes_the_oldest_loose_fragments() {
         assert!(world.fragment_poses(id).len() < 64, "{model:?}");
     }
 }
+
+#[test]
+fn a_ray_finds_the_object_and_the_point_under_it() {
+    for model in MODELS {
+        let (mut world, id) = wall_world(model, 5_000.0);
+        // Before start (the app clicks on objects while stopped) and after some steps.
+        for _ in 0..2 {
+            let (hit, point) = world
+                .ray_cast(Vec3::new(0.3, 0.5, 5.0), Vec3::new(0.0, 0.0, -1.0))
+                .unwrap();
+            assert_eq!(hit, id);
+            assert!((point.z - 0.25).abs() < 0.02, "{model:?}: hit at {point}");
+            run(&mut world, 5);
+        }
+        assert!(world.ray_cast(Vec3::new(5.0, 0.5, 5.0), Vec3::new(0.0, 0.0, -1.0)).is_none());
+    }
+}
+
+#[test]
+fn pause_holds_and_edit_and_delete_act_on_one_object() {
+    for model in MODELS {
+        let (mut world, id) = wall_world(model, 5_000.0);
+        world.start();
+        world.step();
+        world.pause();
+        assert!(!world.step(), "a paused world does not step");
+        assert_eq!(world.stats().steps, 1);
+        world.resume();
+        assert!(world.step());
+        let mut spec = world.object_spec(id).unwrap().clone();
+        spec.position.x += 3.0;
+        spec.color = [1.0, 0.0, 0.0];
+        world.edit_object(id, spec).unwrap();
+        assert_eq!(world.object_color(id), Some([1.0, 0.0, 0.0]));
+        assert!(world.ray_cast(Vec3::new(3.3, 0.5, 5.0), Vec3::NEG_Z).is_some());
+        let mut bad = world.object_spec(id).unwrap().clone();
+        bad.scale = Vec3::new(1.0, -1.0, 1.0);
+        assert!(world.edit_object(id, bad).is_err());
+        assert_eq!(world.object_color(id), Some([1.0, 0.0, 0.0]), "a bad edit changes nothing");
+        world.delete_object(id).unwrap();
+        assert_eq!(world.stats().fragments, 0);
+        assert!(world.object_ids().is_empty());
+        world.reset();
+        assert!(world.object_ids().is_empty(), "a deleted object stays deleted");
+    }
+}
