@@ -125,7 +125,11 @@ fn a_ray_finds_the_object_and_the_point_under_it() {
             assert!((point.z - 0.25).abs() < 0.02, "{model:?}: hit at {point}");
             run(&mut world, 5);
         }
-        assert!(world.ray_cast(Vec3::new(5.0, 0.5, 5.0), Vec3::new(0.0, 0.0, -1.0)).is_none());
+        assert!(
+            world
+                .ray_cast(Vec3::new(5.0, 0.5, 5.0), Vec3::new(0.0, 0.0, -1.0))
+                .is_none()
+        );
     }
 }
 
@@ -145,15 +149,26 @@ fn pause_holds_and_edit_and_delete_act_on_one_object() {
         spec.color = [1.0, 0.0, 0.0];
         world.edit_object(id, spec).unwrap();
         assert_eq!(world.object_color(id), Some([1.0, 0.0, 0.0]));
-        assert!(world.ray_cast(Vec3::new(3.3, 0.5, 5.0), Vec3::NEG_Z).is_some());
+        assert!(
+            world
+                .ray_cast(Vec3::new(3.3, 0.5, 5.0), Vec3::NEG_Z)
+                .is_some()
+        );
         let mut bad = world.object_spec(id).unwrap().clone();
         bad.scale = Vec3::new(1.0, -1.0, 1.0);
         assert!(world.edit_object(id, bad).is_err());
-        assert_eq!(world.object_color(id), Some([1.0, 0.0, 0.0]), "a bad edit changes nothing");
+        assert_eq!(
+            world.object_color(id),
+            Some([1.0, 0.0, 0.0]),
+            "a bad edit changes nothing"
+        );
         world.delete_object(id).unwrap();
         assert_eq!(world.stats().fragments, 0);
         assert!(world.object_ids().is_empty());
         world.reset();
-        assert!(world.object_ids().is_empty(), "a deleted object stays deleted");
+        assert!(
+            world.object_ids().is_empty(),
+            "a deleted object stays deleted"
+        );
     }
 }

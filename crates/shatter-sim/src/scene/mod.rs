@@ -3,6 +3,7 @@
 
 pub mod file;
 pub mod load;
+mod save;
 
 pub use file::SceneFile;
 pub use load::{Scene, line_col};
