@@ -15,7 +15,9 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-use crate::commands::{bench_delaunay, bench_fracture, fracture, shape, tetrahedralize};
+use crate::commands::{
+    bench_delaunay, bench_fracture, bench_step, fracture, shape, simulate, tetrahedralize,
+};
 use crate::error::CliError;
 
 /// shatter: fracture simulation — tetrahedralize, fracture, simulate, benchmark.
@@ -35,6 +37,8 @@ enum Command {
     Shape(shape::ShapeArgs),
     /// Fracture a mesh into bonded fragments (tetra, voronoi or slice).
     Fracture(fracture::FractureArgs),
+    /// Run a scene headless and print its statistics and final-state digest.
+    Simulate(simulate::SimulateArgs),
     /// Benchmarks.
     #[command(subcommand)]
     Bench(BenchCommand),
@@ -47,6 +51,8 @@ enum BenchCommand {
     Delaunay(bench_delaunay::BenchDelaunayArgs),
     /// Time the fracture methods on the built-in shapes.
     Fracture(bench_fracture::BenchFractureArgs),
+    /// Time one simulation step of the 2,000-fragment wall for each bond model.
+    Step(bench_step::BenchStepArgs),
 }
 
 fn run(command: &Command) -> Result<(), CliError> {
@@ -54,8 +60,13 @@ fn run(command: &Command) -> Result<(), CliError> {
         Command::Tetrahedralize(a) => tetrahedralize::run(a),
         Command::Shape(a) => shape::run(a),
         Command::Fracture(a) => fracture::run(a),
+        // Every simulate / bench step failure is a bad scene or flag: exit code 2.
+        Command::Simulate(a) => simulate::run(a).map(|_| ()).map_err(CliError::Input),
         Command::Bench(BenchCommand::Delaunay(a)) => bench_delaunay::run(a),
         Command::Bench(BenchCommand::Fracture(a)) => bench_fracture::run(a),
+        Command::Bench(BenchCommand::Step(a)) => {
+            bench_step::run(a).map(|_| ()).map_err(CliError::Input)
+        }
     }
 }
 

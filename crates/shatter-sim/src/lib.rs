@@ -26,6 +26,8 @@
 //! # Ok::<(), shatter_sim::SimError>(())
 //! ```
 
+#![cfg_attr(test, allow(clippy::unwrap_used))]
+
 pub mod bonds;
 pub mod error;
 pub mod material;

@@ -2,6 +2,8 @@
 
 pub mod bench_delaunay;
 pub mod bench_fracture;
+pub mod bench_step;
 pub mod fracture;
 pub mod shape;
+pub mod simulate;
 pub mod tetrahedralize;

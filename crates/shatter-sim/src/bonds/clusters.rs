@@ -59,8 +59,9 @@ pub(crate) fn build(
 pub(crate) struct Loads {
     /// Bond index → load (N).
     pub bonds: BTreeMap<u32, f32>,
-    /// Fragment → impulse received (N·s), used to launch pieces freed from fixed bodies.
-    pub impulses: BTreeMap<u32, Vec3>,
+    /// Fragment → impulse received (N·s) and the mass of the dynamic body that gave it,
+    /// used to launch pieces freed from fixed bodies.
+    pub impulses: BTreeMap<u32, (Vec3, f32)>,
 }
 
 /// Loads the bonds around fragment `f` with a contact force `force`.
@@ -70,12 +71,15 @@ pub(crate) fn load_from_contact(
     f: u32,
     force: f32,
     impulse: Vec3,
+    other_mass: f32,
     loads: &mut Loads,
 ) {
     let Some(body) = live.body.get(f as usize).copied().flatten() else {
         return;
     };
-    *loads.impulses.entry(f).or_insert(Vec3::ZERO) += impulse;
+    let entry = loads.impulses.entry(f).or_insert((Vec3::ZERO, 0.0));
+    entry.0 += impulse;
+    entry.1 = entry.1.max(other_mass);
     let m_f = live.prepared.masses[f as usize];
     let share = match world.bodies.get(body) {
         Some(rb) if rb.is_dynamic() && rb.mass() > 0.0 => (1.0 - m_f / rb.mass()).max(0.0),

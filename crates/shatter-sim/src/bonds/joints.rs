@@ -49,8 +49,14 @@ pub(crate) fn build(
             continue;
         }
         let c = prepared.fracture.fragments[f].centroid.as_vec3();
+        let ground_pose = world
+            .bodies
+            .get(ground)
+            .map_or(Pose::IDENTITY, |g| *g.position());
+        let frame1 =
+            ground_pose.inverse() * Pose::from_parts(pose.transform_point(c), pose.rotation);
         let joint = FixedJointBuilder::new()
-            .local_frame1(Pose::from_parts(pose.transform_point(c), pose.rotation))
+            .local_frame1(frame1)
             .local_frame2(Pose::from_translation(c))
             .contacts_enabled(false);
         let handle = world.insert_impulse_joint(ground, body, joint);
@@ -113,4 +119,17 @@ pub(crate) fn break_bonds(world: &mut PhysicsWorld, live: &mut LiveObject, bonds
         }
         live.mark_broken(b);
     }
+}
+
+/// Largest joint force of the last step (diagnostics).
+pub(crate) fn max_force(world: &PhysicsWorld, live: &LiveObject) -> f32 {
+    let params = &world.integration_parameters;
+    let substep_dt = params.dt / params.num_solver_iterations.max(1) as f32;
+    live.joints
+        .iter()
+        .flatten()
+        .chain(live.anchor_joints.iter().map(|(_, h)| h))
+        .filter_map(|h| world.impulse_joints.get(*h))
+        .map(|j| joint_force(j, substep_dt))
+        .fold(0.0, f32::max)
 }

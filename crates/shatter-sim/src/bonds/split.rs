@@ -75,7 +75,7 @@ pub(crate) fn split(
     live: &mut LiveObject,
     object: u32,
     body: RigidBodyHandle,
-    impulses: &BTreeMap<u32, Vec3>,
+    impulses: &BTreeMap<u32, (Vec3, f32)>,
 ) -> Vec<RigidBodyHandle> {
     let parts = components(live, body);
     let Some(old) = world.bodies.get(body) else {
@@ -126,8 +126,12 @@ pub(crate) fn split(
             rb.set_linvel(v + w.cross(ci - c), true);
             rb.set_angvel(w, true);
         } else {
-            let j: Vec3 = part.iter().filter_map(|f| impulses.get(f)).copied().sum();
-            let m = rb.mass();
+            let (mut j, mut m_other) = (Vec3::ZERO, 0.0f32);
+            for (ji, mi) in part.iter().filter_map(|f| impulses.get(f)) {
+                j += *ji;
+                m_other = m_other.max(*mi);
+            }
+            let m = rb.mass() + m_other;
             let v0 = if m > 0.0 { j / m } else { Vec3::ZERO };
             rb.set_linvel(v0, true);
             rb.set_angvel(Vec3::ZERO, true);

@@ -8,7 +8,7 @@ use shatter_geom::fracture::{Bond, Fracture, Fragment};
 use shatter_geom::{DMat3, DVec3, TriMesh};
 
 use crate::error::SimError;
-use crate::material::FractureMethod;
+use crate::material::{FractureMethod, Pattern};
 use crate::object::spec::{FractureParams, FractureSource, ObjectSpec};
 use crate::testing::box_grid_fracture;
 
@@ -42,36 +42,83 @@ pub fn resolve_fracture(spec: &ObjectSpec, key: &str) -> Result<Arc<Fracture>, S
                 }
                 return Ok(Arc::new(box_grid_fracture(params.grid, DVec3::ONE)));
             }
-            geom_fracture(name, params, method, key)
+            let pattern = params.pattern.unwrap_or(spec.material.pattern);
+            geom_fracture(name, params, method, pattern, key)
         }
         FractureSource::MeshFile { path, params } => {
             let method = params.method.unwrap_or(spec.material.method);
-            geom_fracture(path, params, method, key)
+            let pattern = params.pattern.unwrap_or(spec.material.pattern);
+            geom_fracture(path, params, method, pattern, key)
         }
     }
 }
 
-/// The hook to `shatter_geom::fracture` for the tetra, voronoi and slice methods.
+/// Runs `shatter_geom::fracture` (tetra, voronoi, slice) on a built-in shape or a mesh file.
 fn geom_fracture(
     what: &str,
-    _params: &FractureParams,
+    params: &FractureParams,
     method: FractureMethod,
+    pattern: Pattern,
     key: &str,
 ) -> Result<Arc<Fracture>, SimError> {
-    const SHAPES: [&str; 6] = ["cube", "capsule", "cylinder", "sphere", "torus", "bird"];
-    if !SHAPES.contains(&what) && !what.contains('.') {
-        return Err(SimError::UnknownShape {
+    use shatter_geom::fracture as geom;
+    let is_file = what.contains('.') || what.contains('/');
+    let mesh = if is_file {
+        shatter_geom::io::load_mesh(what).map_err(|e| SimError::Io {
+            path: what.to_string(),
+            reason: e.to_string(),
+        })?
+    } else {
+        shatter_geom::shapes::by_name(what).ok_or_else(|| SimError::UnknownShape {
             key: format!("{key}.shape"),
             name: what.to_string(),
-        });
-    }
-    Err(SimError::Fracture {
+        })?
+    };
+    let method = match method {
+        FractureMethod::Tetra => geom::Method::Tetra {
+            random_vertices: params.random_vertices as usize,
+            skip: params.skip as usize,
+            center: params.center,
+            placement: if params.thesis_placement {
+                geom::Placement::Thesis
+            } else {
+                geom::Placement::Interior
+            },
+        },
+        FractureMethod::Voronoi => geom::Method::Voronoi {
+            pieces: params.pieces as usize,
+            pattern: match pattern {
+                Pattern::Uniform => geom::Pattern::Uniform,
+                Pattern::Clustered => geom::Pattern::Clustered,
+                Pattern::Radial => geom::Pattern::Radial,
+                Pattern::Splinter => geom::Pattern::Splinter,
+            },
+            impact: None,
+            seeds: None,
+        },
+        FractureMethod::Slice => geom::Method::Slice {
+            pieces: params.pieces as usize,
+            planes: None,
+        },
+        FractureMethod::Grid => {
+            return Err(SimError::invalid(
+                format!("{key}.method"),
+                "the grid method needs shape = \"cube\"",
+            ));
+        }
+    };
+    let fracture = geom::fracture(
+        &mesh,
+        &geom::FractureParams {
+            method,
+            seed: params.seed,
+        },
+    )
+    .map_err(|e| SimError::Fracture {
         key: key.to_string(),
-        reason: format!(
-            "method `{method:?}` on `{what}` needs shatter_geom::fracture::fracture, which this \
-             build does not have yet; use method = \"grid\" with shape = \"cube\""
-        ),
-    })
+        reason: e.to_string(),
+    })?;
+    Ok(Arc::new(fracture))
 }
 
 /// Scales `fracture` and converts it for the simulation.

@@ -59,6 +59,9 @@ pub struct FractureParams {
     pub skip: u32,
     /// The thesis's "Center": also add the centre point.
     pub center: bool,
+    /// Tetra only: place random points with the thesis's scheme instead of uniformly
+    /// inside the mesh.
+    pub thesis_placement: bool,
     /// Random seed.
     pub seed: u64,
     /// Grid cells for [`FractureMethod::Grid`].
@@ -74,6 +77,7 @@ impl Default for FractureParams {
             random_vertices: 50,
             skip: 0,
             center: false,
+            thesis_placement: false,
             seed: 1,
             grid: [4, 4, 4],
         }

@@ -1,1 +1,9 @@
-//! Scenes.
+//! Scenes as TOML files: world settings, breakable objects, timed projectiles and
+//! explosions. The schema is documented in `docs/scene-format.md`.
+
+pub mod file;
+pub mod load;
+mod save;
+
+pub use file::SceneFile;
+pub use load::{Scene, line_col};

@@ -2,7 +2,7 @@
 
 mod query;
 mod settings;
-mod state;
+pub(crate) mod state;
 mod step;
 
 pub use query::ProjectileView;

@@ -30,13 +30,24 @@ impl World {
     pub fn ray_cast(&self, origin: Vec3, dir: Vec3) -> Option<(ObjectId, Vec3)> {
         let dir = dir.try_normalize()?;
         let ray = Ray::new(origin, dir);
-        let is_fragment = |_: ColliderHandle, co: &Collider| {
-            matches!(untag(co.user_data), Some((Kind::Fragment, _, _)))
-        };
-        let filter = QueryFilter::default().predicate(&is_fragment);
-        let (handle, toi) = self.physics.cast_ray(&ray, Real::MAX, true, filter)?;
-        let co = self.physics.colliders.get(handle)?;
-        let (_, object, _) = untag(co.user_data)?;
+        // A direct scan of the fragment colliders rather than the broad phase, which only
+        // sees new bodies after a step (the app clicks on objects before Start).
+        let mut best: Option<(Real, u32)> = None;
+        for (_, co) in self.physics.colliders.iter() {
+            let Some((Kind::Fragment, object, _)) = untag(co.user_data) else {
+                continue;
+            };
+            let max = best.map_or(Real::MAX, |(t, _)| t);
+            if co.compute_aabb().cast_local_ray(&ray, max, true).is_none() {
+                continue;
+            }
+            if let Some(t) = co.shape().cast_ray(co.position(), &ray, max, true)
+                && best.is_none_or(|(bt, _)| t < bt)
+            {
+                best = Some((t, object));
+            }
+        }
+        let (toi, object) = best?;
         Some((ObjectId(object), ray.point_at(toi)))
     }
 
@@ -176,6 +187,14 @@ impl World {
             }
         }
         self.update_counts();
+    }
+
+    /// Largest joint force (N) of object `id` in the last step (joints model; diagnostics).
+    pub fn max_joint_force(&self, id: ObjectId) -> f32 {
+        self.objects
+            .get(&id)
+            .and_then(|r| r.live.as_ref())
+            .map_or(0.0, |live| joints::max_force(&self.physics, live))
     }
 
     /// A hash of the state: every object's fragment poses (bits of position and rotation)

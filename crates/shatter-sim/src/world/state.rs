@@ -157,9 +157,8 @@ impl World {
         self.refresh();
     }
 
-    /// Updates the broad phase so ray casts see the current bodies (no time passes).
+    /// Updates the statistics after an edit (no time passes).
     pub(crate) fn refresh(&mut self) {
-        self.physics.detect_collisions(&(), &());
         self.update_counts();
     }
 

@@ -94,12 +94,25 @@ impl World {
     }
 
     fn break_joints(&mut self) {
-        for record in self.objects.values_mut() {
+        for (id, record) in self.objects.iter_mut() {
             let Some(live) = record.live.as_mut() else {
                 continue;
             };
-            if live.model == BondModel::Joints {
-                joints::break_overloaded(&mut self.physics, live);
+            if live.model != BondModel::Joints
+                || joints::break_overloaded(&mut self.physics, live) == 0
+            {
+                continue;
+            }
+            // A fragment whose bonds (and anchor) are all gone is debris.
+            for (f, body) in live.body.iter().enumerate() {
+                let Some(h) = *body else { continue };
+                let loose = live.prepared.adjacency[f]
+                    .iter()
+                    .all(|&b| live.broken[b as usize])
+                    && !live.anchor_joints.iter().any(|(a, _)| *a as usize == f);
+                if loose && !self.debris.contains(&(id.0, h)) {
+                    self.debris.push_back((id.0, h));
+                }
             }
         }
     }
@@ -124,6 +137,19 @@ impl World {
                 if live.model != BondModel::Clusters {
                     continue;
                 }
+                let other = if sign > 0.0 {
+                    hit.collider1
+                } else {
+                    hit.collider2
+                };
+                let other_mass = self
+                    .physics
+                    .colliders
+                    .get(other)
+                    .and_then(|c| c.parent())
+                    .and_then(|b| self.physics.bodies.get(b))
+                    .filter(|rb| rb.is_dynamic())
+                    .map_or(0.0, |rb| rb.mass());
                 let entry = loads.entry(object).or_default();
                 clusters::load_from_contact(
                     &self.physics,
@@ -131,6 +157,7 @@ impl World {
                     f,
                     hit.force,
                     hit.impulse * sign,
+                    other_mass,
                     entry,
                 );
             }

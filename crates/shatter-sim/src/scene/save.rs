@@ -1,0 +1,141 @@
+//! Writing a world back as a scene file (the app's Save).
+
+use glam::EulerRot;
+use toml::Spanned;
+
+use crate::error::SimError;
+use crate::material::{FractureMethod, Pattern};
+use crate::object::{FractureSource, ProjectileShape};
+use crate::scene::file::{ExplosionEntry, ObjectEntry, ProjectileEntry, SceneFile, WorldSection};
+use crate::world::World;
+use crate::world::state::Action;
+
+fn sp<T>(v: T) -> Spanned<T> {
+    Spanned::new(0..0, v)
+}
+
+fn method_name(m: FractureMethod) -> &'static str {
+    match m {
+        FractureMethod::Tetra => "tetra",
+        FractureMethod::Voronoi => "voronoi",
+        FractureMethod::Slice => "slice",
+        FractureMethod::Grid => "grid",
+    }
+}
+
+fn pattern_name(p: Pattern) -> &'static str {
+    match p {
+        Pattern::Uniform => "uniform",
+        Pattern::Clustered => "clustered",
+        Pattern::Radial => "radial",
+        Pattern::Splinter => "splinter",
+    }
+}
+
+impl World {
+    /// The world's objects, settings and scheduled actions as a scene file (TOML).
+    /// Loading it gives the same initial state. Objects built from a prebuilt fracture and
+    /// custom-mesh projectiles cannot be written (their geometry is not a file).
+    pub fn to_scene_toml(&self) -> Result<String, SimError> {
+        let s = &self.settings;
+        let mut file = SceneFile {
+            world: WorldSection {
+                gravity: Some(s.gravity.to_array()),
+                dt: Some(sp(s.dt)),
+                bond_model: Some(sp(s.bond_model.name().to_string())),
+                ground: Some(s.ground),
+                max_debris: s.max_debris,
+                seconds: None,
+            },
+            ..SceneFile::default()
+        };
+        for (id, record) in &self.objects {
+            let spec = &record.spec;
+            let (shape, mesh, params) = match &spec.source {
+                FractureSource::Shape { name, params } => (Some(sp(name.clone())), None, params),
+                FractureSource::MeshFile { path, params } => (None, Some(path.clone()), params),
+                FractureSource::Prebuilt(_) => {
+                    return Err(SimError::invalid(
+                        format!("object {}", id.0),
+                        "built from a prebuilt fracture, which a scene file cannot hold",
+                    ));
+                }
+            };
+            let (x, y, z) = spec.rotation.to_euler(EulerRot::XYZ);
+            file.objects.push(ObjectEntry {
+                name: Some(spec.name.clone()),
+                shape,
+                mesh,
+                method: Some(sp(method_name(
+                    params.method.unwrap_or(spec.material.method),
+                )
+                .to_string())),
+                pattern: Some(sp(pattern_name(
+                    params.pattern.unwrap_or(spec.material.pattern),
+                )
+                .to_string())),
+                pieces: Some(sp(params.pieces as i64)),
+                grid: Some(sp(params.grid.map(i64::from))),
+                random_vertices: Some(sp(params.random_vertices as i64)),
+                skip: Some(sp(params.skip as i64)),
+                center: Some(params.center),
+                placement: Some(sp(if params.thesis_placement {
+                    "thesis"
+                } else {
+                    "interior"
+                }
+                .to_string())),
+                seed: Some(params.seed),
+                material: None,
+                density: Some(spec.material.density),
+                friction: Some(spec.material.friction),
+                restitution: Some(spec.material.restitution),
+                break_force: Some(sp(spec.effective_break_force())),
+                last: spec.last.map(sp),
+                color: Some(sp(spec.color)),
+                position: Some(spec.position.to_array()),
+                rotation: Some([x, y, z].map(f32::to_degrees)),
+                scale: Some(sp(spec.scale.to_array())),
+                bond_model: spec.bond_model.map(|m| sp(m.name().to_string())),
+                anchored: Some(spec.anchored),
+            });
+        }
+        for (at, action) in &self.schedule {
+            match action {
+                Action::Fire(p) => {
+                    let shape = match &p.shape {
+                        ProjectileShape::Cube => "cube",
+                        ProjectileShape::Sphere => "sphere",
+                        ProjectileShape::Capsule => "capsule",
+                        ProjectileShape::Cylinder => "cylinder",
+                        ProjectileShape::Custom(_) => {
+                            return Err(SimError::invalid(
+                                "projectiles",
+                                "a custom-mesh projectile cannot be written (its mesh is not a file)",
+                            ));
+                        }
+                    };
+                    file.projectiles.push(ProjectileEntry {
+                        at: Some(sp(*at)),
+                        shape: Some(sp(shape.to_string())),
+                        mesh: None,
+                        size: Some(sp(p.size)),
+                        density: Some(sp(p.density)),
+                        speed: Some(sp(p.speed)),
+                        color: Some(sp(p.color)),
+                        last: p.last.map(sp),
+                        from: p.from.to_array(),
+                        to: p.to.to_array(),
+                    });
+                }
+                Action::Explode(e) => file.explosions.push(ExplosionEntry {
+                    at: Some(sp(*at)),
+                    position: e.position.to_array(),
+                    radius: sp(e.radius),
+                    power: sp(e.power),
+                }),
+            }
+        }
+        toml::to_string(&file).map_err(|e| SimError::invalid("scene", e.to_string()))
+    }
+}

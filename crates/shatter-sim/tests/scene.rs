@@ -1,0 +1,96 @@
+//! Scene files: parse errors name key and line; validation; the shipped scenes load.
+#![allow(clippy::unwrap_used, missing_docs)]
+
+use std::path::Path;
+
+use shatter_sim::SimError;
+use shatter_sim::scene::Scene;
+
+fn err(text: &str) -> String {
+    Scene::parse(text).unwrap_err().to_string()
+}
+
+#[test]
+fn unknown_keys_and_wrong_types_name_key_and_line() {
+    let e = err("[world]\ndt = 0.01\n\n[[objects]]\nshape = \"cube\"\ncolour = [1, 0, 0]\n");
+    assert!(e.contains("line 6") && e.contains("colour"), "{e}");
+    let e = err("[[objects]]\nshape = \"cube\"\nbreak_force = \"strong\"\n");
+    assert!(e.contains("line 3") && e.contains("break_force"), "{e}");
+    let e = err("[[objects]]\nshape = \"cube\"\nskip = 1.5\n");
+    assert!(e.contains("line 3"), "{e}");
+}
+
+#[test]
+fn invalid_values_name_the_key() {
+    let e = err("[[explosions]]\nposition = [0, 0, 0]\nradius = -1.0\npower = 5.0\n");
+    assert!(
+        e.contains("explosions[0].radius") && e.contains("line 3"),
+        "{e}"
+    );
+    let e = err("[[objects]]\nshape = \"cube\"\npieces = 0\n");
+    assert!(
+        e.contains("objects[0].pieces") && e.contains("line 3"),
+        "{e}"
+    );
+    let e = err("[[objects]]\nshape = \"cube\"\n\nmaterial = \"cheese\"\n");
+    assert!(
+        e.contains("objects[0].material") && e.contains("cheese") && e.contains("line 4"),
+        "{e}"
+    );
+    let e = err("[[objects]]\nshape = \"teapot\"\n");
+    assert!(
+        e.contains("objects[0].shape") && e.contains("teapot"),
+        "{e}"
+    );
+    let e = err("[[projectiles]]\nshape = \"banana\"\nfrom = [0, 0, 1]\nto = [0, 0, 0]\n");
+    assert!(e.contains("projectiles[0].shape"), "{e}");
+    assert!(matches!(
+        Scene::parse("[world\n"),
+        Err(SimError::SceneSyntax { line: 1, .. })
+    ));
+}
+
+fn scenes_dir() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/scenes")
+}
+
+#[test]
+fn the_wall_scene_has_two_thousand_fragments_and_a_timed_shot() {
+    let scene = Scene::load(&scenes_dir().join("wall.toml")).unwrap();
+    assert_eq!(scene.projectiles.len(), 1);
+    assert!((scene.projectiles[0].0 - 0.5).abs() < 1e-9);
+    let world = scene.build(None).unwrap();
+    assert!(world.stats().fragments >= 2000);
+}
+
+#[test]
+fn every_shipped_scene_builds() {
+    for entry in std::fs::read_dir(scenes_dir()).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            let scene = Scene::load(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            scene
+                .build(None)
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        }
+    }
+}
+
+#[test]
+fn a_saved_world_loads_back_into_the_same_initial_state() {
+    let scene = Scene::load(&scenes_dir().join("thesis_joints.toml")).unwrap();
+    let world = scene.build(None).unwrap();
+    let text = world.to_scene_toml().unwrap();
+    let again = Scene::parse(&text).unwrap_or_else(|e| panic!("{e}\n{text}"));
+    let mut world2 = again.build(None).unwrap();
+    assert_eq!(world.digest(), world2.digest());
+    let mut world = world;
+    for w in [&mut world, &mut world2] {
+        w.start();
+        for _ in 0..40 {
+            w.step();
+        }
+    }
+    assert_eq!(world.digest(), world2.digest(), "same scene, same run");
+    assert!(world.stats().bonds_broken > 0);
+}
