@@ -98,8 +98,10 @@ impl Mesh {
     /// Empty storage for `pts` (internal order, with the placeholder at 0).
     pub(crate) fn new(pts: Vec<[f64; 3]>) -> Self {
         let n = pts.len();
-        // ~6.7 finite tetrahedra per point for uniform points, plus the hull's infinite ones.
-        let cap = n * 27 / 4 + 64;
+        // ~6.77 finite tetrahedra per point for uniform points, plus the hull's infinite
+        // ones. Reserving a little more avoids a reallocation (which may copy) near the end;
+        // pages never written are never resident.
+        let cap = n * 7 + 1024;
         Self {
             pts,
             tv: Vec::with_capacity(cap),
