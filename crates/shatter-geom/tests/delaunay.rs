@@ -277,3 +277,46 @@ proptest! {
         prop_assert!((t.volume(&p) - h).abs() <= 1e-9 * h);
     }
 }
+
+#[test]
+fn validate_rejects_broken_results() {
+    use shatter_geom::delaunay::NO_NEIGHBOR;
+    let p = sample(Distribution::Uniform, 200, 4);
+    let good = tetrahedralize(&p).unwrap();
+    good.validate(&p).unwrap();
+
+    // A flipped tetrahedron.
+    let mut bad = good.clone();
+    bad.tetrahedra[3].swap(0, 1);
+    assert!(bad.validate(&p).is_err());
+
+    // A broken adjacency.
+    let mut bad = good.clone();
+    let t = (0..bad.neighbors.len())
+        .find(|&t| bad.neighbors[t][0] != NO_NEIGHBOR)
+        .unwrap();
+    bad.neighbors[t][0] = NO_NEIGHBOR;
+    assert!(bad.validate(&p).is_err());
+
+    // A non-Delaunay configuration: move the far vertex of a neighbour to the centroid of
+    // the first tetrahedron (deep inside its circumsphere), keeping the connectivity.
+    let mut q = p.clone();
+    let (t, n) = (0..good.tetrahedra.len())
+        .find_map(|t| {
+            let n = good.neighbors[t][0];
+            (n != NO_NEIGHBOR).then_some((t, n as usize))
+        })
+        .unwrap();
+    let far = good.tetrahedra[n]
+        .iter()
+        .copied()
+        .find(|v| !good.tetrahedra[t].contains(v))
+        .unwrap();
+    let c: DVec3 = good.tetrahedra[t]
+        .iter()
+        .map(|&v| p[v as usize])
+        .sum::<DVec3>()
+        / 4.0;
+    q[far as usize] = c;
+    assert!(good.validate(&q).is_err());
+}

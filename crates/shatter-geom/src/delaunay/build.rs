@@ -32,7 +32,7 @@ use super::types::{DelaunayError, Tetrahedralization};
 pub fn tetrahedralize(points: &[DVec3]) -> Result<Tetrahedralization, DelaunayError> {
     check_input(points)?;
     let n = points.len();
-    if n >= (1 << 31) - 1 {
+    if n >= (1 << 30) - 1 {
         return Err(DelaunayError::TooLarge { points: n });
     }
     if n < 4 {

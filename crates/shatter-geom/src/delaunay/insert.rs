@@ -3,7 +3,7 @@
 //! of new tetrahedra joining the point to the cavity boundary.
 
 use super::predicates::{insphere_perturbed, orient};
-use super::storage::{BoundaryFace, DEAD, EDGE, EdgeSlot, INF, MARK, Mesh};
+use super::storage::{BoundaryFace, DEAD, EDGE, EdgeSlot, FLAGS, INF, MARK, Mesh, SEEN};
 use super::types::DelaunayError;
 
 /// Where a point landed.
@@ -90,7 +90,7 @@ impl Mesh {
         }
         let n = self.adj[t as usize][inf] >> 2;
         let w = &self.tv[n as usize];
-        let q = |k: usize| &self.pts[(w[k] & !MARK) as usize];
+        let q = |k: usize| &self.pts[(w[k] & !FLAGS) as usize];
         insphere_perturbed(q(0), q(1), q(2), q(3), p)
     }
 
@@ -113,14 +113,19 @@ impl Mesh {
             for i in 0..4 {
                 let outer = self.adj[t as usize][i];
                 let n = outer >> 2;
-                if self.tv[n as usize][3] & MARK != 0 {
+                let flags = self.tv[n as usize][3] & FLAGS;
+                if flags == MARK {
                     continue;
                 }
-                if self.in_conflict(n, &p) {
+                if flags == 0 && self.in_conflict(n, &p) {
                     self.tv[n as usize][3] |= MARK;
                     self.cavity.push(n);
                     self.stack.push(n);
                 } else {
+                    if flags == 0 {
+                        self.tv[n as usize][3] |= SEEN;
+                        self.seen.push(n);
+                    }
                     let mut verts = self.tv[t as usize];
                     verts[3] &= !MARK;
                     verts[i] = pi;
@@ -132,6 +137,10 @@ impl Mesh {
                 }
             }
         }
+        for &n in &self.seen {
+            self.tv[n as usize][3] &= !SEEN;
+        }
+        self.seen.clear();
         // 2. Star: one new tetrahedron per boundary face, glued through the edge table.
         let nb = self.boundary.len();
         let need = (nb * 6).next_power_of_two().max(64);

@@ -23,8 +23,9 @@
 //! # Storage
 //! Two parallel arrays, indexed by tetrahedron, 32 bytes per tetrahedron in all:
 //! ```text
-//!  tv[t]  = [v0, v1, v2, v3]         internal vertex ids (0 = infinite vertex,
-//!                                    bit 31 of v3 = "in the current cavity")
+//!  tv[t]  = [v0, v1, v2, v3]         internal vertex ids (0 = infinite vertex; in v3,
+//!                                    bit 31 = "in the current cavity",
+//!                                    bit 30 = "tested, not in conflict")
 //!  adj[t] = [a0, a1, a2, a3]         a_i = neighbour across the face opposite v_i:
 //!
 //!           31                           2 1   0
@@ -32,10 +33,30 @@
 //!          |   neighbour tetrahedron n    |  j  |   j = index of that face in n
 //!          +------------------------------+-----+   (adj[n][j] >> 2 == t)
 //! ```
+//! An infinite tetrahedron `(a, b, c, ∞)` is in conflict with `p` when `p` is strictly
+//! beyond the hull face `abc`, or on its plane and in conflict with the finite tetrahedron
+//! behind it (so flat hull regions are 2D Delaunay under the same perturbation).
+//!
 //! Freed slots (a cavity larger than its star) go to a free list. Scratch buffers (cavity,
 //! stack, boundary faces, an open-addressing edge table with generation stamps) are reused
 //! across insertions, so an insertion allocates nothing. The result drops the infinite
 //! tetrahedra and renumbers in place with a rank bitmap.
+//!
+//! # Memory
+//! About 6.77 tetrahedra per point for uniform points, so the result alone
+//! (`tetrahedra` + `neighbors`, 32 bytes per tetrahedron, plus `representative`) takes
+//! about 220 bytes per point; the construction adds the points in insertion order (24) and
+//! the order itself (4), a peak of about 250 bytes per point on top of the input.
+//!
+//! # Example
+//! ```
+//! use shatter_geom::delaunay::tetrahedralize;
+//! use shatter_geom::sampling::uniform;
+//! let pts = uniform(1000, 1);
+//! let t = tetrahedralize(&pts).expect("points in general position");
+//! t.validate(&pts).expect("exactly Delaunay");
+//! assert_eq!(t.unique_points, 1000);
+//! ```
 
 mod build;
 mod insert;

@@ -9,6 +9,11 @@ use super::types::{DelaunayError, FACES};
 pub(crate) const INF: u32 = 0;
 /// Bit of `tv[t][3]` marking a tetrahedron of the current cavity.
 pub(crate) const MARK: u32 = 1 << 31;
+/// Bit of `tv[t][3]` marking a tetrahedron found *not* in conflict during the current
+/// cavity search (so it is tested once, however many cavity faces it borders).
+pub(crate) const SEEN: u32 = 1 << 30;
+/// Both flag bits; vertex indices stay below `2^30`.
+pub(crate) const FLAGS: u32 = MARK | SEEN;
 /// `tv[t][0]` of a free (deleted, reusable) slot.
 pub(crate) const DEAD: u32 = u32::MAX;
 /// Most tetrahedra the packed adjacency (`tet << 2 | face`) can address.
@@ -53,6 +58,8 @@ pub(crate) struct Mesh {
     pub cavity: Vec<u32>,
     /// Scratch: depth-first stack of the cavity search.
     pub stack: Vec<u32>,
+    /// Scratch: tetrahedra flagged [`SEEN`] in the current cavity search.
+    pub seen: Vec<u32>,
     /// Scratch: cavity boundary faces.
     pub boundary: Vec<BoundaryFace>,
     /// Scratch: open-addressing edge table (power-of-two size), valid where `stamp` matches.
@@ -91,8 +98,10 @@ impl Mesh {
     /// Empty storage for `pts` (internal order, with the placeholder at 0).
     pub(crate) fn new(pts: Vec<[f64; 3]>) -> Self {
         let n = pts.len();
-        // ~6.7 finite tetrahedra per point for uniform points, plus the hull's infinite ones.
-        let cap = n * 27 / 4 + 64;
+        // ~6.77 finite tetrahedra per point for uniform points, plus the hull's infinite
+        // ones. Reserving a little more avoids a reallocation (which may copy) near the end;
+        // pages never written are never resident.
+        let cap = n * 7 + 1024;
         Self {
             pts,
             tv: Vec::with_capacity(cap),
@@ -103,6 +112,7 @@ impl Mesh {
             cavity: Vec::with_capacity(64),
             stack: Vec::with_capacity(64),
             boundary: Vec::with_capacity(128),
+            seen: Vec::with_capacity(64),
             edges: vec![EdgeSlot::default(); 512],
             stamp: 0,
         }
