@@ -5,6 +5,7 @@ use std::path::Path;
 
 use shatter_geom::fracture::{Fracture, FractureParams, Method, Pattern, Placement};
 use shatter_geom::io::{self, ExportObject};
+use shatter_geom::sampling;
 use shatter_geom::{DVec3, TriMesh};
 
 use crate::args::{Distribution, MeshFormat, ShapeName};
@@ -13,20 +14,20 @@ use crate::commands::fracture::{
 };
 use crate::error::CliError;
 
-fn not_landed(what: &str) -> CliError {
-    CliError::internal(format!(
-        "{what} is not available in this build of shatter-geom"
-    ))
-}
-
 /// `n` random points from `distribution`, reproducible from `seed`.
 pub fn random_points(
     distribution: Distribution,
     n: usize,
     seed: u64,
 ) -> Result<Vec<DVec3>, CliError> {
-    let _ = (distribution, n, seed);
-    Err(not_landed("random point sampling"))
+    let d = match distribution {
+        Distribution::Uniform => sampling::Distribution::Uniform,
+        Distribution::Ball => sampling::Distribution::Ball,
+        Distribution::Sphere => sampling::Distribution::Sphere,
+        Distribution::Gaussian => sampling::Distribution::Gaussian,
+        Distribution::Grid => sampling::Distribution::Grid,
+    };
+    Ok(sampling::sample(d, n, seed))
 }
 
 /// A built-in shape at unit scale.
