@@ -15,7 +15,9 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-use crate::commands::{bench_delaunay, bench_fracture, fracture, shape, tetrahedralize};
+use crate::commands::{
+    bench_creation, bench_delaunay, bench_fracture, fracture, shape, study, tetrahedralize,
+};
 use crate::error::CliError;
 
 /// shatter: fracture simulation — tetrahedralize, fracture, simulate, benchmark.
@@ -35,6 +37,8 @@ enum Command {
     Shape(shape::ShapeArgs),
     /// Fracture a mesh into bonded fragments (tetra, voronoi or slice).
     Fracture(fracture::FractureArgs),
+    /// The influence of the parameters on a shot at a standard object (CSV and plots).
+    Study(study::StudyArgs),
     /// Benchmarks.
     #[command(subcommand)]
     Bench(BenchCommand),
@@ -47,6 +51,8 @@ enum BenchCommand {
     Delaunay(bench_delaunay::BenchDelaunayArgs),
     /// Time the fracture methods on the built-in shapes.
     Fracture(bench_fracture::BenchFractureArgs),
+    /// The thesis's creation time against random points, with CSV and plots.
+    Creation(bench_creation::BenchCreationArgs),
 }
 
 fn run(command: &Command) -> Result<(), CliError> {
@@ -56,6 +62,8 @@ fn run(command: &Command) -> Result<(), CliError> {
         Command::Fracture(a) => fracture::run(a),
         Command::Bench(BenchCommand::Delaunay(a)) => bench_delaunay::run(a),
         Command::Bench(BenchCommand::Fracture(a)) => bench_fracture::run(a),
+        Command::Bench(BenchCommand::Creation(a)) => bench_creation::run(a),
+        Command::Study(a) => study::run(a),
     }
 }
 
