@@ -16,7 +16,8 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 use crate::commands::{
-    bench_delaunay, bench_fracture, bench_step, fracture, shape, simulate, tetrahedralize,
+    bench_creation, bench_delaunay, bench_fracture, bench_step, fracture, shape, simulate, study,
+    tetrahedralize,
 };
 use crate::error::CliError;
 
@@ -39,6 +40,8 @@ enum Command {
     Fracture(fracture::FractureArgs),
     /// Run a scene headless and print its statistics and final-state digest.
     Simulate(simulate::SimulateArgs),
+    /// The influence of the parameters on a shot at a standard object (CSV and plots).
+    Study(study::StudyArgs),
     /// Benchmarks.
     #[command(subcommand)]
     Bench(BenchCommand),
@@ -53,6 +56,8 @@ enum BenchCommand {
     Fracture(bench_fracture::BenchFractureArgs),
     /// Time one simulation step of the 2,000-fragment wall for each bond model.
     Step(bench_step::BenchStepArgs),
+    /// The thesis's creation time against random points, with CSV and plots.
+    Creation(bench_creation::BenchCreationArgs),
 }
 
 fn run(command: &Command) -> Result<(), CliError> {
@@ -67,6 +72,8 @@ fn run(command: &Command) -> Result<(), CliError> {
         Command::Bench(BenchCommand::Step(a)) => {
             bench_step::run(a).map(|_| ()).map_err(CliError::Input)
         }
+        Command::Bench(BenchCommand::Creation(a)) => bench_creation::run(a),
+        Command::Study(a) => study::run(a),
     }
 }
 

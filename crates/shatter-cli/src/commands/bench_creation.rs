@@ -29,7 +29,11 @@ use crate::error::{CliError, ResultExt};
 #[derive(Debug, Args)]
 pub struct BenchCreationArgs {
     /// Models, comma separated: cube, capsule, cylinder, sphere, torus, bird.
-    #[arg(long, value_delimiter = ',', default_value = "cube,capsule,cylinder,bird")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "cube,capsule,cylinder,bird"
+    )]
     pub models: Vec<String>,
     /// Random point placements, comma separated: thesis, interior.
     #[arg(long, value_delimiter = ',', default_value = "thesis,interior")]
@@ -108,7 +112,9 @@ fn parse_list<T: ValueEnum + PartialEq>(
             )));
         };
         if values.contains(&value) {
-            return Err(CliError::input(format!("{flag}: {what} '{name}' is repeated")));
+            return Err(CliError::input(format!(
+                "{flag}: {what} '{name}' is repeated"
+            )));
         }
         values.push(value);
     }
@@ -277,7 +283,8 @@ fn table(rows: &[Row]) -> Result<CsvTable, CliError> {
             Cell::from(r.total.min),
             Cell::from(r.total.max),
         ]);
-        t.push_row(cells).internal_err("building the creation table")?;
+        t.push_row(cells)
+            .internal_err("building the creation table")?;
     }
     Ok(t)
 }
@@ -337,7 +344,11 @@ fn plots(config: &CreationConfig, rows: &[Row]) -> Result<Vec<PathBuf>, CliError
     };
     let mut measures = vec![(Measure::Fracture, "creation", "fracture")];
     if config.with_bodies {
-        measures.push((Measure::Total, "creation_total", "fracture + bodies and joints"));
+        measures.push((
+            Measure::Total,
+            "creation_total",
+            "fracture + bodies and joints",
+        ));
     }
     for &(measure, prefix, what) in &measures {
         for &p in &config.placements {
@@ -556,7 +567,8 @@ mod tests {
 
     #[test]
     fn zero_step_zero_runs_and_bad_names_are_input_errors() {
-        let cases: [(fn(&mut BenchCreationArgs), &str); 5] = [
+        type Change = fn(&mut BenchCreationArgs);
+        let cases: [(Change, &str); 5] = [
             (|a| a.step = 0, "--step must be at least 1"),
             (|a| a.runs = 0, "--runs must be at least 1"),
             (
@@ -567,7 +579,10 @@ mod tests {
                 |a| a.placements = vec!["outside".into()],
                 "--placements: unknown placement 'outside'",
             ),
-            (|a| a.models = vec!["cube".into(), "cube".into()], "is repeated"),
+            (
+                |a| a.models = vec!["cube".into(), "cube".into()],
+                "is repeated",
+            ),
         ];
         for (change, message) in cases {
             let mut a = args();
@@ -610,9 +625,19 @@ mod tests {
         assert_eq!(rows.len(), 2 * 2 * 3);
         assert_eq!(ticks, rows.len());
         let r = &rows[1];
-        assert_eq!((r.model, r.placement, r.random_points), (ShapeName::Cube, PlacementArg::Thesis, 10));
+        assert_eq!(
+            (r.model, r.placement, r.random_points),
+            (ShapeName::Cube, PlacementArg::Thesis, 10)
+        );
         // Seeds 7, 8, 9.
-        assert_eq!(r.fracture, Summary { mean: 18.0, min: 17.0, max: 19.0 });
+        assert_eq!(
+            r.fracture,
+            Summary {
+                mean: 18.0,
+                min: 17.0,
+                max: 19.0
+            }
+        );
         assert_eq!(r.total.mean, 19.0);
         assert_eq!(r.fragments, 20.0);
 
@@ -668,7 +693,11 @@ mod tests {
         let written = plots(&config, &rows).unwrap();
         // fracture + total per placement, and one per model; PNG and SVG each.
         assert_eq!(written.len(), 2 * (2 * 2 + 2));
-        for name in ["creation_thesis.png", "creation_total_interior.svg", "creation_bird.png"] {
+        for name in [
+            "creation_thesis.png",
+            "creation_total_interior.svg",
+            "creation_bird.png",
+        ] {
             assert!(dir.path().join(name).is_file(), "{name} missing");
         }
     }

@@ -1,9 +1,11 @@
 //! One module per command: each has a clap `Args` struct and a `run` function.
 
+pub mod bench_creation;
 pub mod bench_delaunay;
 pub mod bench_fracture;
 pub mod bench_step;
 pub mod fracture;
 pub mod shape;
 pub mod simulate;
+pub mod study;
 pub mod tetrahedralize;

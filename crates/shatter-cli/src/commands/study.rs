@@ -22,13 +22,20 @@ use std::sync::Arc;
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use shatter_geom::DVec3;
+use shatter_geom::fracture::Fracture;
 use shatter_report::plot::{LinePlot, Series};
 use shatter_report::table::{Cell, CsvTable};
 use shatter_sim::{
-    BondModel, FractureMethod, FractureParams, FractureSource, Material, ObjectId, ObjectSpec,
-    ProjectileShape, ProjectileSpec, World, WorldSettings,
+    BondModel, Material, ObjectId, ObjectSpec, ProjectileShape, ProjectileSpec, World,
+    WorldSettings,
 };
 
+use crate::args::ShapeName;
+use crate::commands::fracture::{
+    FractureConfig, MeshSource, MethodConfig, PatternArg, PlacementArg, VoronoiSeeds,
+    fracture_timed, load_source,
+};
 use crate::error::{CliError, ResultExt};
 
 /// Arguments of `shatter study`.
@@ -65,9 +72,12 @@ pub struct StudyArgs {
     /// Baseline random vertices of the tetra method.
     #[arg(long, value_name = "N", default_value_t = 20)]
     pub random_vertices: usize,
-    /// Pieces of the voronoi and slice methods.
+    /// Cells of the voronoi method.
     #[arg(long, value_name = "K", default_value_t = 100)]
     pub pieces: usize,
+    /// Planes of the slice method.
+    #[arg(long, value_name = "K", default_value_t = 7)]
+    pub planes: usize,
     /// Break forces of the break-force study.
     #[arg(
         long,
@@ -76,7 +86,11 @@ pub struct StudyArgs {
     )]
     pub break_forces: Vec<f64>,
     /// Projectile speeds of the speed and method studies.
-    #[arg(long, value_delimiter = ',', default_value = "0,5,10,15,20,30,40,50,60")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "0,5,10,15,20,30,40,50,60"
+    )]
     pub speeds: Vec<f64>,
     /// Random vertices of the random-vertices study.
     #[arg(long, value_delimiter = ',', default_value = "0,10,20,40,60,80,100")]
@@ -119,24 +133,36 @@ impl Study {
     }
 }
 
-fn method_name(m: FractureMethod) -> &'static str {
-    match m {
-        FractureMethod::Tetra => "tetra",
-        FractureMethod::Voronoi => "voronoi",
-        FractureMethod::Slice => "slice",
-        FractureMethod::Grid => "grid",
+/// A fracture method of the study.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum StudyMethod {
+    Tetra,
+    Voronoi,
+    Slice,
+}
+
+impl StudyMethod {
+    const ALL: [StudyMethod; 3] = [Self::Tetra, Self::Voronoi, Self::Slice];
+
+    fn name(self) -> &'static str {
+        match self {
+            Self::Tetra => "tetra",
+            Self::Voronoi => "voronoi",
+            Self::Slice => "slice",
+        }
     }
 }
 
 /// One simulated case.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Case {
-    method: FractureMethod,
+    method: StudyMethod,
     bond_model: BondModel,
     break_force: f64,
     speed: f64,
     random_vertices: usize,
     pieces: usize,
+    planes: usize,
     seconds: f64,
     seed: u64,
 }
@@ -205,8 +231,8 @@ impl StudyConfig {
         if a.runs == 0 {
             return Err(CliError::input("--runs must be at least 1"));
         }
-        if a.pieces == 0 {
-            return Err(CliError::input("--pieces must be at least 1"));
+        if a.pieces == 0 || a.planes == 0 {
+            return Err(CliError::input("--pieces and --planes must be at least 1"));
         }
         positive("--break-force", [a.break_force], false)?;
         positive("--speed", [a.speed], true)?;
@@ -225,12 +251,13 @@ impl StudyConfig {
             studies,
             bond_models: bond_models.clone(),
             baseline: Case {
-                method: FractureMethod::Tetra,
+                method: StudyMethod::Tetra,
                 bond_model: bond_models[0],
                 break_force: a.break_force,
                 speed: a.speed,
                 random_vertices: a.random_vertices,
                 pieces: a.pieces,
+                planes: a.planes,
                 seconds: a.seconds,
                 seed: a.seed,
             },
@@ -245,11 +272,6 @@ impl StudyConfig {
     /// Every case of `study`: (line name, x value, case without its seed).
     fn cases(&self, study: Study) -> Vec<(String, f64, Case)> {
         let mut cases = Vec::new();
-        let methods = [
-            FractureMethod::Tetra,
-            FractureMethod::Voronoi,
-            FractureMethod::Slice,
-        ];
         for &model in &self.bond_models {
             let base = Case {
                 bond_model: model,
@@ -259,7 +281,14 @@ impl StudyConfig {
             match study {
                 Study::BreakForce => {
                     for &f in &self.break_forces {
-                        cases.push((line.clone(), f, Case { break_force: f, ..base }));
+                        cases.push((
+                            line.clone(),
+                            f,
+                            Case {
+                                break_force: f,
+                                ..base
+                            },
+                        ));
                     }
                 }
                 Study::Speed => {
@@ -277,8 +306,8 @@ impl StudyConfig {
                     }
                 }
                 Study::Method => {
-                    for method in methods {
-                        let line = format!("{} ({})", method_name(method), model.name());
+                    for method in StudyMethod::ALL {
+                        let line = format!("{} ({})", method.name(), model.name());
                         for &v in &self.speeds {
                             let case = Case {
                                 method,
@@ -359,9 +388,8 @@ fn sweep(
                     })
                 })
                 .collect::<Result<Vec<_>, _>>()?;
-            let pick = |f: fn(&Outcome) -> usize| {
-                Spread::of(&outcomes.iter().map(f).collect::<Vec<_>>())
-            };
+            let pick =
+                |f: fn(&Outcome) -> usize| Spread::of(&outcomes.iter().map(f).collect::<Vec<_>>());
             rows.push(Row {
                 study,
                 line: line.clone(),
@@ -410,29 +438,50 @@ fn released_fragments(fragments: usize, bonds: &[(u32, u32)], broken: &[bool]) -
     fragments - size.into_iter().max().unwrap_or(0)
 }
 
-/// Simulates one case: the standard cube, one shot, `seconds` of simulated time.
-fn simulate_case(case: &Case) -> Result<Outcome, CliError> {
-    let mut material = Material::preset("stone")
-        .ok_or_else(|| CliError::internal("the stone material preset is missing"))?;
-    material.method = case.method;
-    let params = FractureParams {
-        method: Some(case.method),
-        pieces: case.pieces as u32,
-        random_vertices: case.random_vertices as u32,
-        seed: case.seed,
-        ..FractureParams::default()
+/// The standard cube fractured as `case` says (through the same code path as
+/// `shatter fracture`).
+fn fracture_case(case: &Case) -> Result<Fracture, CliError> {
+    let method = match case.method {
+        StudyMethod::Tetra => MethodConfig::Tetra {
+            random_vertices: case.random_vertices,
+            skip: 0,
+            center: false,
+            placement: PlacementArg::Interior,
+        },
+        StudyMethod::Voronoi => MethodConfig::Voronoi {
+            seeds: VoronoiSeeds::Pattern {
+                count: case.pieces,
+                pattern: PatternArg::Uniform,
+            },
+            impact: None,
+        },
+        StudyMethod::Slice => MethodConfig::Slice {
+            planes: case.planes,
+        },
     };
+    let config = FractureConfig {
+        source: MeshSource::Shape(ShapeName::Cube),
+        scale: DVec3::ONE,
+        method,
+        seed: case.seed,
+    };
+    let (mesh, _) = load_source(&config)?;
+    let (fracture, _, _) = fracture_timed(&mesh, &config)?;
+    Ok(fracture)
+}
+
+/// Simulates one case: the standard cube (stone, resting on the ground), one shot at the
+/// middle of a face, `seconds` of simulated time.
+fn simulate_case(case: &Case) -> Result<Outcome, CliError> {
+    let fracture = fracture_case(case)?;
+    let material = Material::preset("stone")
+        .ok_or_else(|| CliError::internal("the stone material preset is missing"))?;
     let spec = ObjectSpec {
         name: "standard cube".to_string(),
-        source: FractureSource::Shape {
-            name: "cube".to_string(),
-            params,
-        },
         material,
         break_force: Some(case.break_force as f32),
-        position: [0.0, 0.5, 0.0].into(),
         bond_model: Some(case.bond_model),
-        ..ObjectSpec::from_fracture(Default::default(), [0.0, 0.5, 0.0].into())
+        ..ObjectSpec::from_fracture(fracture, [0.0, 0.5, 0.0].into())
     };
     let mut world = World::new(WorldSettings {
         bond_model: case.bond_model,
@@ -443,14 +492,14 @@ fn simulate_case(case: &Case) -> Result<Outcome, CliError> {
         .internal_err(format!("building the standard cube ({case:?})"))?;
     if case.speed > 0.0 {
         world.schedule_projectile(
-            0.25,
+            SHOT_AT,
             ProjectileSpec {
                 shape: ProjectileShape::Sphere,
                 size: 0.2,
                 density: 7800.0,
                 speed: case.speed as f32,
                 last: None,
-                from: [0.0, 0.5, 4.0].into(),
+                from: [0.0, 0.5, 3.0].into(),
                 to: [0.0, 0.5, 0.0].into(),
                 ..ProjectileSpec::default()
             },
@@ -461,7 +510,7 @@ fn simulate_case(case: &Case) -> Result<Outcome, CliError> {
     for _ in 0..steps {
         world.step();
     }
-    let fracture: Arc<_> = world
+    let fracture: Arc<Fracture> = world
         .object_fracture(id)
         .ok_or_else(|| CliError::internal("the standard cube vanished"))?;
     let broken = world.bond_states(id).unwrap_or_default();
@@ -474,7 +523,10 @@ fn simulate_case(case: &Case) -> Result<Outcome, CliError> {
     })
 }
 
-const HEADER: [&str; 20] = [
+/// When the shot is fired, in seconds after start (the cube has settled by then).
+const SHOT_AT: f64 = 0.25;
+
+const HEADER: [&str; 21] = [
     "study",
     "line",
     "value",
@@ -484,6 +536,7 @@ const HEADER: [&str; 20] = [
     "speed_m_s",
     "random_vertices",
     "pieces",
+    "planes",
     "seconds",
     "runs",
     "fragments",
@@ -510,12 +563,13 @@ fn table(rows: &[Row]) -> Result<CsvTable, CliError> {
             Cell::from(r.study.name()),
             Cell::from(&r.line),
             Cell::from(r.value),
-            Cell::from(method_name(c.method)),
+            Cell::from(c.method.name()),
             Cell::from(c.bond_model.name()),
             Cell::from(c.break_force),
             Cell::from(c.speed),
             Cell::from(c.random_vertices),
             Cell::from(c.pieces),
+            Cell::from(c.planes),
             Cell::from(c.seconds),
             Cell::from(r.runs),
             Cell::from(r.fragments.mean),
@@ -533,6 +587,9 @@ fn table(rows: &[Row]) -> Result<CsvTable, CliError> {
     Ok(t)
 }
 
+/// Reads one measured quantity off a row.
+type Metric = fn(&Row) -> Spread;
+
 /// Per study: a plot of bonds broken and one of fragments released (PNG and SVG).
 fn plots(config: &StudyConfig, rows: &[Row]) -> Result<Vec<PathBuf>, CliError> {
     let mut written = Vec::new();
@@ -544,7 +601,7 @@ fn plots(config: &StudyConfig, rows: &[Row]) -> Result<Vec<PathBuf>, CliError> {
                 lines.push(r.line.clone());
             }
         }
-        let metrics: [(&str, &str, fn(&Row) -> Spread); 2] = [
+        let metrics: [(&str, &str, Metric); 2] = [
             ("bonds", "bonds broken", |r| r.bonds_broken),
             ("released", "fragments released", |r| r.released),
         ];
@@ -572,7 +629,10 @@ fn plots(config: &StudyConfig, rows: &[Row]) -> Result<Vec<PathBuf>, CliError> {
             let base = config
                 .out
                 .join(format!("study_{}_{stem}", study.name().replace('-', "_")));
-            for (path, svg) in [(base.with_extension("png"), false), (base.with_extension("svg"), true)] {
+            for (path, svg) in [
+                (base.with_extension("png"), false),
+                (base.with_extension("svg"), true),
+            ] {
                 if svg {
                     plot.write_svg(&path)
                 } else {
@@ -673,6 +733,7 @@ mod tests {
             speed: 20.0,
             random_vertices: 10,
             pieces: 50,
+            planes: 5,
             break_forces: vec![100.0, 200.0],
             speeds: vec![0.0, 10.0, 20.0],
             vertex_counts: vec![0, 10],
@@ -681,12 +742,22 @@ mod tests {
 
     #[test]
     fn bad_flags_are_input_errors_naming_the_flag() {
-        let cases: [(fn(&mut StudyArgs), &str); 6] = [
-            (|a| a.studies = vec!["colour".into()], "--studies: unknown study 'colour'"),
-            (|a| a.bonds = vec!["glue".into()], "--bonds: unknown bond model 'glue'"),
+        type Change = fn(&mut StudyArgs);
+        let cases: [(Change, &str); 6] = [
+            (
+                |a| a.studies = vec!["colour".into()],
+                "--studies: unknown study 'colour'",
+            ),
+            (
+                |a| a.bonds = vec!["glue".into()],
+                "--bonds: unknown bond model 'glue'",
+            ),
             (|a| a.runs = 0, "--runs must be at least 1"),
             (|a| a.seconds = -1.0, "--seconds must be a positive number"),
-            (|a| a.break_forces = vec![10.0, 0.0], "--break-forces: 0 is not"),
+            (
+                |a| a.break_forces = vec![10.0, 0.0],
+                "--break-forces: 0 is not",
+            ),
             (|a| a.speeds = vec![f64::NAN], "--speeds: NaN is not"),
         ];
         for (change, message) in cases {
@@ -706,13 +777,13 @@ mod tests {
         for (line, x, case) in &speed {
             assert_eq!(case.speed, *x);
             assert_eq!(case.break_force, 1000.0);
-            assert_eq!(case.method, FractureMethod::Tetra);
+            assert_eq!(case.method, StudyMethod::Tetra);
             assert_eq!(line, case.bond_model.name());
         }
         let method = c.cases(Study::Method);
         assert_eq!(method.len(), 2 * 3 * 3);
         assert!(method.iter().any(|(l, _, c)| l == "voronoi (clusters)"
-            && c.method == FractureMethod::Voronoi
+            && c.method == StudyMethod::Voronoi
             && c.bond_model == BondModel::Clusters));
     }
 
@@ -722,7 +793,10 @@ mod tests {
         let bonds = [(0, 1), (1, 2), (2, 3), (4, 5)];
         assert_eq!(released_fragments(6, &bonds, &[false; 4]), 2);
         // Breaking 1-2 leaves pieces {0,1}, {2,3}, {4,5}: 4 fragments off the largest.
-        assert_eq!(released_fragments(6, &bonds, &[false, true, false, false]), 4);
+        assert_eq!(
+            released_fragments(6, &bonds, &[false, true, false, false]),
+            4
+        );
         // Everything broken: 5 of 6 released.
         assert_eq!(released_fragments(6, &bonds, &[true; 4]), 5);
         assert_eq!(released_fragments(0, &[], &[]), 0);
@@ -757,7 +831,14 @@ mod tests {
             .iter()
             .find(|r| r.study == Study::Speed && r.value == 10.0)
             .unwrap();
-        assert_eq!(r.bonds_broken, Spread { mean: 11.0, min: 10.0, max: 12.0 });
+        assert_eq!(
+            r.bonds_broken,
+            Spread {
+                mean: 11.0,
+                min: 10.0,
+                max: 12.0
+            }
+        );
 
         let written = write_outputs(&config, &rows).unwrap();
         // CSV + 2 studies × 2 metrics × 2 formats.
