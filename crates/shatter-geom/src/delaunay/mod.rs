@@ -51,9 +51,11 @@
 //! # Speed
 //! On uniform points nearly every predicate is decided by the inlined floating-point
 //! filters; side by side with CGAL 5.5 on the same million points it is faster (see
-//! `bench/cgal/README.md`). Inputs where most tests are (nearly) cospherical — integer
-//! grids, points on a sphere — spend most of their time in `robust`'s exact stages and are
-//! several times slower than CGAL; a cheaper exact stage is the next step there.
+//! `bench/cgal/README.md`). Inputs where most tests are (nearly) cospherical spend their
+//! time in exact stages: lattice inputs (grids) are decided in 128-bit integers, about
+//! 1.3× CGAL's time; points on a sphere (floating-point, nearly cospherical) go to
+//! `robust`'s expansion arithmetic and take several times CGAL's — a faster exact stage is
+//! the next step there.
 //!
 //! # Example
 //! ```
