@@ -51,11 +51,11 @@
 //! # Speed
 //! On uniform points nearly every predicate is decided by the inlined floating-point
 //! filters; side by side with CGAL 5.5 on the same million points it is faster (see
-//! `bench/cgal/README.md`). Inputs where most tests are (nearly) cospherical spend their
-//! time in exact stages: lattice inputs (grids) are decided in 128-bit integers, about
-//! 1.3× CGAL's time; points on a sphere (floating-point, nearly cospherical) go to
-//! `robust`'s expansion arithmetic and take several times CGAL's — a faster exact stage is
-//! the next step there.
+//! `bench/cgal/README.md`). Inputs where most tests are (nearly) cospherical need exact
+//! stages: when the coordinate differences are exact, the determinant is evaluated in
+//! 128-bit (lattices, grids) or 512-bit integers (`exact.rs`), otherwise by `robust`'s
+//! expansion arithmetic. A 200k-point grid then takes about CGAL's time, 200k points on a
+//! sphere about twice CGAL's.
 //!
 //! # Example
 //! ```
@@ -68,6 +68,7 @@
 //! ```
 
 mod build;
+mod exact;
 mod insert;
 mod order;
 mod output;

@@ -7,6 +7,8 @@
 
 use robust::Coord3D;
 
+use super::exact::insphere_lattice;
+
 /// Largest coordinate magnitude for which the predicates stay exact.
 ///
 /// `insphere` is a degree-5 polynomial in coordinate differences; with `|x| <= 1e40` every
@@ -120,100 +122,6 @@ pub fn insphere_raw(a: &[f64; 3], b: &[f64; 3], cc: &[f64; 3], d: &[f64; 3], e: 
         return -sign;
     }
     -robust::insphere(c(a), c(b), c(cc), c(d), c(e))
-}
-
-/// Most bits of a scaled coordinate difference for [`insphere_lattice`]: the degree-5
-/// determinant then stays below `2^(5·20 + 7) < 2^127`.
-const LATTICE_BITS: u32 = 20;
-
-/// Exact sign of Shewchuk's insphere determinant (robust's sign convention) in 128-bit
-/// integers, when all coordinate differences to `e` are exact and are small integer
-/// multiples of one power of two (grids, lattice and CAD-like inputs — exactly the inputs
-/// whose tests are often exactly degenerate). `None` otherwise.
-#[cold]
-#[inline(never)]
-fn insphere_lattice(p: [&[f64; 3]; 4], e: &[f64; 3]) -> Option<f64> {
-    let mut diff = [[0.0f64; 3]; 4];
-    let mut low = i32::MAX;
-    for (row, q) in diff.iter_mut().zip(p) {
-        for k in 0..3 {
-            let (x, tail) = two_diff(q[k], e[k]);
-            if tail != 0.0 || !x.is_finite() {
-                return None;
-            }
-            row[k] = x;
-            if x != 0.0 {
-                low = low.min(lowest_bit_exponent(x)?);
-            }
-        }
-    }
-    if low == i32::MAX {
-        return Some(0.0);
-    }
-    // Scale to integers: x / 2^low, each below 2^LATTICE_BITS in magnitude.
-    let mut m = [[0i128; 3]; 4];
-    for (mr, row) in m.iter_mut().zip(&diff) {
-        for k in 0..3 {
-            let x = row[k];
-            if x == 0.0 {
-                continue;
-            }
-            let (mant, exp) = decompose(x)?;
-            // exp >= low by construction; mant >= 1, so a shift this large is too big anyway.
-            let shift = exp - low;
-            if !(0..LATTICE_BITS as i32).contains(&shift) {
-                return None;
-            }
-            let v = (mant as i128) << shift;
-            if v >= 1i128 << LATTICE_BITS {
-                return None;
-            }
-            mr[k] = if x < 0.0 { -v } else { v };
-        }
-    }
-    let lift = |r: &[i128; 3]| r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
-    let det3 = |a: &[i128; 3], b: &[i128; 3], c: &[i128; 3]| {
-        a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
-            + a[2] * (b[0] * c[1] - b[1] * c[0])
-    };
-    // Expansion of det[[a, la], [b, lb], [c, lc], [d, ld]] along the lift column.
-    let det = -lift(&m[0]) * det3(&m[1], &m[2], &m[3]) + lift(&m[1]) * det3(&m[0], &m[2], &m[3])
-        - lift(&m[2]) * det3(&m[0], &m[1], &m[3])
-        + lift(&m[3]) * det3(&m[0], &m[1], &m[2]);
-    Some(det.signum() as f64)
-}
-
-/// Knuth's two-difference: `a - b = x + tail` exactly.
-#[inline]
-fn two_diff(a: f64, b: f64) -> (f64, f64) {
-    let x = a - b;
-    let bv = a - x;
-    let av = x + bv;
-    let br = bv - b;
-    let ar = a - av;
-    (x, ar + br)
-}
-
-/// `|x| = mant · 2^exp` with an odd integer `mant` (finite non-zero `x`).
-fn decompose(x: f64) -> Option<(u64, i32)> {
-    let bits = x.to_bits();
-    let exp_field = ((bits >> 52) & 0x7ff) as i32;
-    let frac = bits & ((1u64 << 52) - 1);
-    let (mant, exp) = match exp_field {
-        0 => (frac, -1074),
-        0x7ff => return None,
-        _ => (frac | (1u64 << 52), exp_field - 1075),
-    };
-    if mant == 0 {
-        return None;
-    }
-    let tz = mant.trailing_zeros();
-    Some((mant >> tz, exp + tz as i32))
-}
-
-/// Exponent of the lowest set bit of finite non-zero `x`.
-fn lowest_bit_exponent(x: f64) -> Option<i32> {
-    decompose(x).map(|(_, e)| e)
 }
 
 /// Lexicographic "greater than" on points, the priority order of the symbolic perturbation.
@@ -356,6 +264,39 @@ mod tests {
         // Not a lattice: declines.
         let q = [0.1, 0.2, 0.3];
         assert!(insphere_lattice([&A, &B, &C, &D], &q).is_none());
+    }
+
+    #[test]
+    fn wide_path_agrees_with_robust_on_nearly_cospherical_points() {
+        // Nearby points on the unit sphere (full 53-bit mantissas, differences exact by
+        // Sterbenz's lemma): the 512-bit path must give robust's sign.
+        let mut seed = 99u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut wide = 0;
+        for _ in 0..20000 {
+            let p: Vec<[f64; 3]> = (0..5)
+                .map(|_| {
+                    let v = [
+                        0.6 + 0.01 * next(),
+                        0.5 + 0.01 * next(),
+                        0.6 + 0.01 * next(),
+                    ];
+                    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+                    [v[0] / l, v[1] / l, v[2] / l]
+                })
+                .collect();
+            let r = robust::insphere(c(&p[0]), c(&p[1]), c(&p[2]), c(&p[3]), c(&p[4]));
+            if let Some(s) = insphere_lattice([&p[0], &p[1], &p[2], &p[3]], &p[4]) {
+                assert_eq!(s, r.signum() * (r != 0.0) as i32 as f64, "{p:?}");
+                wide += 1;
+            }
+        }
+        assert!(wide > 10000, "only {wide} answered");
     }
 
     #[test]
