@@ -1,5 +1,6 @@
-//! Exact integer evaluation of the insphere determinant for inputs whose coordinate
-//! differences are exact: the cheap exact stage before `robust`'s expansion arithmetic.
+//! Exact integer evaluation of the insphere determinant: the cheap exact stage before
+//! `robust`'s expansion arithmetic, for coordinates whose magnitudes do not span too many
+//! binary orders.
 
 /// Most bits of a scaled coordinate difference for the 128-bit evaluation: the degree-5
 /// determinant then stays below `2^(5·20 + 7) < 2^127`.
@@ -9,51 +10,58 @@ const SMALL_BITS: u32 = 20;
 const WIDE_BITS: u32 = 90;
 
 /// Exact sign of Shewchuk's insphere determinant (robust's sign convention) in integers,
-/// when all coordinate differences to `e` are exact (no rounding) and, scaled by one power
-/// of two, are integers of at most [`WIDE_BITS`] bits: 128-bit arithmetic for small ones
-/// (grids, lattices), 512-bit for the rest (e.g. nearby points on a sphere, whose
-/// differences are exact by Sterbenz's lemma). `None` otherwise.
+/// when all 15 coordinates, scaled by one power of two (the lowest bit among them), are
+/// integers of at most [`WIDE_BITS`] bits — true unless their magnitudes span more than
+/// about 2^37: 128-bit arithmetic when the differences are small (grids, lattices),
+/// 512-bit otherwise (e.g. points on a sphere). `None` otherwise.
 #[cold]
 #[inline(never)]
 pub(crate) fn insphere_lattice(p: [&[f64; 3]; 4], e: &[f64; 3]) -> Option<f64> {
-    let mut diff = [[0.0f64; 3]; 4];
+    // Every coordinate as (sign, odd mantissa, exponent of its lowest bit); the exact
+    // differences are integers once everything is scaled by 2^-low.
+    let pts = [p[0], p[1], p[2], p[3], e];
+    let mut parts = [[(false, 0u64, 0i32); 3]; 5];
     let mut low = i32::MAX;
-    for (row, q) in diff.iter_mut().zip(p) {
+    for (row, q) in parts.iter_mut().zip(pts) {
         for k in 0..3 {
-            let (x, tail) = two_diff(q[k], e[k]);
-            if tail != 0.0 || !x.is_finite() {
-                return None;
-            }
-            row[k] = x;
-            if x != 0.0 {
-                low = low.min(lowest_bit_exponent(x)?);
+            if q[k] != 0.0 {
+                let (mant, exp) = decompose(q[k])?;
+                row[k] = (q[k] < 0.0, mant, exp);
+                low = low.min(exp);
             }
         }
     }
     if low == i32::MAX {
         return Some(0.0);
     }
-    // Scale to integers: x / 2^low.
-    let mut m = [[0i128; 3]; 4];
-    let mut max = 0i128;
-    for (mr, row) in m.iter_mut().zip(&diff) {
+    // Scaled coordinates as i128 (at most WIDE_BITS bits), then exact differences to e.
+    let mut ints = [[0i128; 3]; 5];
+    for (ir, row) in ints.iter_mut().zip(&parts) {
         for k in 0..3 {
-            let x = row[k];
-            if x == 0.0 {
+            let (neg, mant, exp) = row[k];
+            if mant == 0 {
                 continue;
             }
-            let (mant, exp) = decompose(x)?;
-            // exp >= low by construction; mant >= 1, so a shift this large is too big anyway.
             let shift = exp - low;
-            if !(0..WIDE_BITS as i32).contains(&shift) {
-                return None;
-            }
-            if (64 - mant.leading_zeros()) + shift as u32 > WIDE_BITS {
+            if !(0..WIDE_BITS as i32).contains(&shift)
+                || (64 - mant.leading_zeros()) + shift as u32 > WIDE_BITS
+            {
                 return None;
             }
             let v = (mant as i128) << shift;
-            max = max.max(v);
-            mr[k] = if x < 0.0 { -v } else { v };
+            ir[k] = if neg { -v } else { v };
+        }
+    }
+    let mut m = [[0i128; 3]; 4];
+    let mut max = 0i128;
+    for (mr, ir) in m.iter_mut().zip(&ints) {
+        for k in 0..3 {
+            let d = ir[k] - ints[4][k];
+            if d.unsigned_abs() >= 1u128 << WIDE_BITS {
+                return None;
+            }
+            max = max.max(d.abs());
+            mr[k] = d;
         }
     }
     if max >= 1i128 << SMALL_BITS {
@@ -71,17 +79,6 @@ pub(crate) fn insphere_lattice(p: [&[f64; 3]; 4], e: &[f64; 3]) -> Option<f64> {
     Some(det.signum() as f64)
 }
 
-/// Knuth's two-difference: `a - b = x + tail` exactly.
-#[inline]
-fn two_diff(a: f64, b: f64) -> (f64, f64) {
-    let x = a - b;
-    let bv = a - x;
-    let av = x + bv;
-    let br = bv - b;
-    let ar = a - av;
-    (x, ar + br)
-}
-
 /// `|x| = mant · 2^exp` with an odd integer `mant` (finite non-zero `x`).
 fn decompose(x: f64) -> Option<(u64, i32)> {
     let bits = x.to_bits();
@@ -97,11 +94,6 @@ fn decompose(x: f64) -> Option<(u64, i32)> {
     }
     let tz = mant.trailing_zeros();
     Some((mant >> tz, exp + tz as i32))
-}
-
-/// Exponent of the lowest set bit of finite non-zero `x`.
-fn lowest_bit_exponent(x: f64) -> Option<i32> {
-    decompose(x).map(|(_, e)| e)
 }
 
 /// The same determinant as [`insphere_lattice`]'s small path, in 512-bit two's complement
@@ -163,21 +155,37 @@ impl W {
         self.add(o.neg())
     }
 
-    /// The low 512 bits of the product (exact when the product fits).
+    /// The low 512 bits of the product (exact when the product fits), multiplying
+    /// magnitudes over their non-zero limbs only.
     fn mul(self, o: W) -> W {
+        let (na, a) = self.abs();
+        let (nb, b) = o.abs();
+        let la = 8 - a.0.iter().rev().take_while(|&&x| x == 0).count();
+        let lb = 8 - b.0.iter().rev().take_while(|&&x| x == 0).count();
         let mut r = [0u64; 8];
-        for i in 0..8 {
-            if self.0[i] == 0 {
-                continue;
-            }
+        for i in 0..la {
             let mut carry = 0u128;
-            for j in 0..8 - i {
-                let t = self.0[i] as u128 * o.0[j] as u128 + r[i + j] as u128 + carry;
+            let top = lb.min(8 - i);
+            for j in 0..top {
+                let t = a.0[i] as u128 * b.0[j] as u128 + r[i + j] as u128 + carry;
                 r[i + j] = t as u64;
                 carry = t >> 64;
             }
+            if i + top < 8 {
+                r[i + top] = carry as u64;
+            }
         }
-        W(r)
+        let r = W(r);
+        if na != nb { r.neg() } else { r }
+    }
+
+    /// (is negative, magnitude).
+    fn abs(self) -> (bool, W) {
+        if self.0[7] >> 63 == 1 {
+            (true, self.neg())
+        } else {
+            (false, self)
+        }
     }
 
     fn signum(self) -> f64 {

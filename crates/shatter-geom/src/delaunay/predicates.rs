@@ -261,8 +261,12 @@ mod tests {
             }
         }
         assert_eq!(answered, 20000);
-        // Not a lattice: declines.
+        // Any doubles of similar magnitude are handled, and agree with robust.
         let q = [0.1, 0.2, 0.3];
+        let r = robust::insphere(c(&A), c(&B), c(&C), c(&D), c(&q));
+        assert_eq!(insphere_lattice([&A, &B, &C, &D], &q), Some(r.signum()));
+        // Magnitudes spanning ~100 binary orders: declines (robust decides).
+        let q = [1e-30, 0.3, 0.2];
         assert!(insphere_lattice([&A, &B, &C, &D], &q).is_none());
     }
 
