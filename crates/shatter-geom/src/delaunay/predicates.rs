@@ -7,6 +7,8 @@
 
 use robust::Coord3D;
 
+use super::exact::insphere_lattice;
+
 /// Largest coordinate magnitude for which the predicates stay exact.
 ///
 /// `insphere` is a degree-5 polynomial in coordinate differences; with `|x| <= 1e40` every
@@ -115,6 +117,9 @@ pub fn insphere_raw(a: &[f64; 3], b: &[f64; 3], cc: &[f64; 3], d: &[f64; 3], e: 
     let bound = (ISP_BOUND * 24.0 * (1.0 + 1e-12)) * (mx * my * mz) * (mx * mx + my * my + mz * mz);
     if det.abs() > bound {
         return -det;
+    }
+    if let Some(sign) = insphere_lattice([a, b, cc, d], e) {
+        return -sign;
     }
     -robust::insphere(c(a), c(b), c(cc), c(d), c(e))
 }
@@ -233,6 +238,69 @@ mod tests {
         // And the answer is invariant under even permutations of the tetrahedron.
         assert_eq!(x, insphere_perturbed(&B, &C, &A, &D, &e));
         assert_eq!(x, insphere_perturbed(&D, &C, &B, &A, &e));
+    }
+
+    #[test]
+    fn lattice_path_agrees_with_robust() {
+        // Integer and dyadic points, degenerate and not: the 128-bit path must give
+        // robust's sign wherever it answers.
+        let mut seed = 12345u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            ((seed % 9) as f64 - 4.0) * 0.25
+        };
+        let mut answered = 0;
+        for _ in 0..20000 {
+            let p: Vec<[f64; 3]> = (0..5).map(|_| [next(), next(), next()]).collect();
+            let r = robust::insphere(c(&p[0]), c(&p[1]), c(&p[2]), c(&p[3]), c(&p[4]));
+            if let Some(s) = insphere_lattice([&p[0], &p[1], &p[2], &p[3]], &p[4]) {
+                assert_eq!(s, r.signum() * (r != 0.0) as i32 as f64, "{p:?}");
+                answered += 1;
+            }
+        }
+        assert_eq!(answered, 20000);
+        // Any doubles of similar magnitude are handled, and agree with robust.
+        let q = [0.1, 0.2, 0.3];
+        let r = robust::insphere(c(&A), c(&B), c(&C), c(&D), c(&q));
+        assert_eq!(insphere_lattice([&A, &B, &C, &D], &q), Some(r.signum()));
+        // Magnitudes spanning ~100 binary orders: declines (robust decides).
+        let q = [1e-30, 0.3, 0.2];
+        assert!(insphere_lattice([&A, &B, &C, &D], &q).is_none());
+    }
+
+    #[test]
+    fn wide_path_agrees_with_robust_on_nearly_cospherical_points() {
+        // Nearby points on the unit sphere (full 53-bit mantissas, differences exact by
+        // Sterbenz's lemma): the 512-bit path must give robust's sign.
+        let mut seed = 99u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut wide = 0;
+        for _ in 0..20000 {
+            let p: Vec<[f64; 3]> = (0..5)
+                .map(|_| {
+                    let v = [
+                        0.6 + 0.01 * next(),
+                        0.5 + 0.01 * next(),
+                        0.6 + 0.01 * next(),
+                    ];
+                    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+                    [v[0] / l, v[1] / l, v[2] / l]
+                })
+                .collect();
+            let r = robust::insphere(c(&p[0]), c(&p[1]), c(&p[2]), c(&p[3]), c(&p[4]));
+            if let Some(s) = insphere_lattice([&p[0], &p[1], &p[2], &p[3]], &p[4]) {
+                assert_eq!(s, r.signum() * (r != 0.0) as i32 as f64, "{p:?}");
+                wide += 1;
+            }
+        }
+        assert!(wide > 10000, "only {wide} answered");
     }
 
     #[test]
