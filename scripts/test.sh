@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
-# Every check CI runs, exactly as CI runs it: formatting, lints, all tests.
+# Every check CI runs, exactly as CI runs it: formatting, lints, all tests, and the app's
+# scripted session in a real window under Xvfb (needs the Debian packages .ci/run installs:
+# xvfb xauth mesa-vulkan-drivers libgl1-mesa-dri).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$HOME/.cache/shatter-target}"
 cargo fmt --all --check
 cargo clippy --workspace --all-targets --locked -- -D warnings
 cargo test --workspace --locked
+bash scripts/app-autotest.sh "$CARGO_TARGET_DIR/app-autotest"
