@@ -44,6 +44,16 @@ pub(crate) fn triangulate_cap(
         DVec2::new(q.dot(u), q.dot(v))
     };
 
+    if let Some(fan) = convex_fan(pos, boundary, &to2) {
+        return fan
+            .into_iter()
+            .map(|ids| {
+                let c = ids.iter().map(|&i| to2(pos[i as usize])).sum::<DVec2>() / 3.0;
+                (ids, covering_tag(c, plane.tag, coverings, &to2))
+            })
+            .collect();
+    }
+
     let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> =
         ConstrainedDelaunayTriangulation::new();
     let mut handle_of: FastMap<u32, spade::handles::FixedVertexHandle> = FastMap::default();
@@ -118,21 +128,12 @@ pub(crate) fn triangulate_cap(
         if ids.contains(&u32::MAX) {
             continue;
         }
-        let mut tag = plane.tag;
-        if !coverings.is_empty() {
-            let c = vs
-                .iter()
-                .map(|h| DVec2::new(h.position().x, h.position().y))
-                .sum::<DVec2>()
-                / 3.0;
-            for cov in coverings {
-                let [a, b, cc] = cov.corners.map(to2);
-                if point_in_triangle(c, a, b, cc) {
-                    tag = cov.tag;
-                    break;
-                }
-            }
-        }
+        let c = vs
+            .iter()
+            .map(|h| DVec2::new(h.position().x, h.position().y))
+            .sum::<DVec2>()
+            / 3.0;
+        let tag = covering_tag(c, plane.tag, coverings, &to2);
         // Spade's faces are counter-clockwise in (u, v), so their normal is along n.
         out.push((ids, tag));
     }
@@ -147,4 +148,100 @@ pub(crate) fn point_in_triangle(p: DVec2, a: DVec2, b: DVec2, c: DVec2) -> bool 
     let has_neg = d1 < 0.0 || d2 < 0.0 || d3 < 0.0;
     let has_pos = d1 > 0.0 || d2 > 0.0 || d3 > 0.0;
     !(has_neg && has_pos)
+}
+
+/// The tag of a cap triangle with 2D centroid `c`: that of the covering original face it
+/// lies in, or `tag`.
+fn covering_tag(c: DVec2, tag: u64, coverings: &[Covering], to2: &impl Fn(DVec3) -> DVec2) -> u64 {
+    for cov in coverings {
+        let [a, b, cc] = cov.corners.map(to2);
+        if point_in_triangle(c, a, b, cc) {
+            return cov.tag;
+        }
+    }
+    tag
+}
+
+/// Fast path for the common cap: a single boundary loop whose reverse is a convex
+/// polygon (decided exactly with `orient2d`), triangulated as a fan. `None` when the
+/// boundary is anything else (several loops, holes, shared vertices, a concave loop).
+fn convex_fan(
+    pos: &[DVec3],
+    boundary: &[(u32, u32)],
+    to2: &impl Fn(DVec3) -> DVec2,
+) -> Option<Vec<[u32; 3]>> {
+    let n = boundary.len();
+    if n < 3 {
+        return None;
+    }
+    let mut next: FastMap<u32, u32> = FastMap::default();
+    for &(a, b) in boundary {
+        if next.insert(a, b).is_some() {
+            return None;
+        }
+    }
+    // Walk the loop from the first edge; it must use every edge.
+    let start = boundary[0].0;
+    let mut lp = Vec::with_capacity(n);
+    let mut v = start;
+    loop {
+        lp.push(v);
+        v = *next.get(&v)?;
+        if v == start {
+            break;
+        }
+        if lp.len() > n {
+            return None;
+        }
+    }
+    if lp.len() != n {
+        return None;
+    }
+    // Two loop vertices at one point (cuts meeting on an edge): leave it to the CDT,
+    // which merges them.
+    let mut seen: FastMap<[u64; 3], ()> = FastMap::default();
+    for &i in &lp {
+        let q = pos[i as usize];
+        if seen.insert([q.x, q.y, q.z].map(f64::to_bits), ()).is_some() {
+            return None;
+        }
+    }
+    // The cap runs the loop backwards, counter-clockwise in the plane's frame.
+    lp.reverse();
+    let p: Vec<DVec2> = lp.iter().map(|&i| to2(pos[i as usize])).collect();
+    let orient = |a: DVec2, b: DVec2, c: DVec2| {
+        robust::orient2d(
+            robust::Coord { x: a.x, y: a.y },
+            robust::Coord { x: b.x, y: b.y },
+            robust::Coord { x: c.x, y: c.y },
+        )
+    };
+    let mut area2 = 0.0;
+    for i in 0..n {
+        let (a, b, c) = (p[i], p[(i + 1) % n], p[(i + 2) % n]);
+
+        if orient(a, b, c) < 0.0 {
+            return None;
+        }
+        area2 += a.perp_dot(b);
+    }
+    if area2 <= 0.0 {
+        return None;
+    }
+    // Fan from a vertex where the polygon and both its neighbours turn strictly: then
+    // no fan triangle is flat (collinear vertices lie only on sides away from the apex).
+    // "Strictly" with a margin: a turn of less than ~1e-9 rad counts as straight, as
+    // the 2D projection of collinear 3D points is only collinear up to rounding.
+    let strict: Vec<bool> = (0..n)
+        .map(|i| {
+            let (a, b, c) = (p[(i + n - 1) % n], p[i], p[(i + 1) % n]);
+            orient(a, b, c) > 1e-9 * (b - a).length() * (c - b).length()
+        })
+        .collect();
+    let apex = (0..n).find(|&i| strict[(i + n - 1) % n] && strict[i] && strict[(i + 1) % n])?;
+    Some(
+        (1..n - 1)
+            .map(|k| [lp[apex], lp[(apex + k) % n], lp[(apex + k + 1) % n]])
+            .collect(),
+    )
 }

@@ -7,7 +7,7 @@
 use glam::DVec3;
 
 use super::clip::{Plane, clip};
-use super::piece::{Piece, SURFACE};
+use super::piece::{FastMap, Piece, SURFACE};
 
 /// Relative tolerance (of the fragment's size) for convexity tests.
 const CONVEX_TOL: f64 = 1e-2;
@@ -16,19 +16,11 @@ const MIN_PIECE_FRACTION: f64 = 1e-3;
 /// At most this many convex pieces per fragment.
 const MAX_PIECES: usize = 16;
 
-/// Is the closed solid convex: does every vertex lie behind (or within `tol` of) every
-/// face's plane?
+/// Is the closed solid convex: is every edge convex within `tol` (the vertex across
+/// each edge lies behind, or within `tol` of, the triangle's plane)? For a connected,
+/// embedded closed surface, convex edges everywhere mean a convex solid.
 pub(crate) fn is_convex(piece: &Piece, tol: f64) -> bool {
-    piece.tris.iter().all(|t| {
-        let [a, b, c] = t.map(|i| piece.pos[i as usize]);
-        let n = (b - a).cross(c - a);
-        let len = n.length();
-        if len == 0.0 {
-            return true;
-        }
-        let n = n / len;
-        piece.pos.iter().all(|&p| n.dot(p - a) <= tol)
-    })
+    worst_face(piece, tol).1.is_none()
 }
 
 /// Convex pieces of a closed fragment (each with a non-degenerate volume).
@@ -60,7 +52,8 @@ fn decompose(piece: &Piece, tol: f64) -> Option<Vec<Vec<DVec3>>> {
     }
     let eps = 1e-10 * tol.max(f64::MIN_POSITIVE) / CONVEX_TOL;
     // (violation, face plane, piece)
-    let mut work: Vec<(f64, Option<Plane>, Piece)> = vec![worst_face(piece, tol, piece.clone())];
+    let first = worst_face(piece, tol);
+    let mut work: Vec<(f64, Option<Plane>, Piece)> = vec![(first.0, first.1, piece.clone())];
     loop {
         if work.len() >= MAX_PIECES {
             break;
@@ -87,7 +80,8 @@ fn decompose(piece: &Piece, tol: f64) -> Option<Vec<Vec<DVec3>>> {
             continue;
         }
         for q in parts {
-            work.push(worst_face(&q, tol, q.clone()));
+            let (v, plane) = worst_face(&q, tol);
+            work.push((v, plane, q));
         }
     }
     let pieces: Vec<Vec<DVec3>> = work
@@ -102,8 +96,16 @@ fn decompose(piece: &Piece, tol: f64) -> Option<Vec<Vec<DVec3>>> {
     }
 }
 
-/// The most violated face of `p` as a plane (`None` when convex within `tol`).
-fn worst_face(p: &Piece, tol: f64, owned: Piece) -> (f64, Option<Plane>, Piece) {
+/// The face with the most concave edge of `p` (the vertex across the edge farthest in
+/// front of the face's plane), as a plane; `None` when no edge is concave beyond `tol`.
+fn worst_face(p: &Piece, tol: f64) -> (f64, Option<Plane>) {
+    // Directed edge -> vertex opposite it in its triangle.
+    let mut opposite: FastMap<(u32, u32), u32> = FastMap::default();
+    for t in &p.tris {
+        for k in 0..3 {
+            opposite.insert((t[k], t[(k + 1) % 3]), t[(k + 2) % 3]);
+        }
+    }
     let mut best: (f64, Option<Plane>) = (tol, None);
     for t in &p.tris {
         let [a, b, c] = t.map(|i| p.pos[i as usize]);
@@ -113,21 +115,22 @@ fn worst_face(p: &Piece, tol: f64, owned: Piece) -> (f64, Option<Plane>, Piece) 
             continue;
         }
         let n = n / len;
-        let v = p
-            .pos
-            .iter()
-            .map(|&q| n.dot(q - a))
-            .fold(f64::NEG_INFINITY, f64::max);
-        if v > best.0 {
-            best = (
-                v,
-                Some(Plane {
-                    n,
-                    d: n.dot(a),
-                    tag: SURFACE,
-                }),
-            );
+        for k in 0..3 {
+            let Some(&o) = opposite.get(&(t[(k + 1) % 3], t[k])) else {
+                continue;
+            };
+            let v = n.dot(p.pos[o as usize] - a);
+            if v > best.0 {
+                best = (
+                    v,
+                    Some(Plane {
+                        n,
+                        d: n.dot(a),
+                        tag: SURFACE,
+                    }),
+                );
+            }
         }
     }
-    (best.0, best.1, owned)
+    best
 }

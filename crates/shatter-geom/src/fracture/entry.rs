@@ -156,6 +156,13 @@ fn finish_cut(
             "{lonely} fragments below the sliver threshold had no neighbour to merge into"
         ));
     }
+    let pieces: Vec<Piece> = pieces
+        .into_iter()
+        .map(|mut p| {
+            p.weld();
+            p
+        })
+        .collect();
     (pieces.iter().map(fragment).collect(), bonds)
 }
 

@@ -50,6 +50,42 @@ impl Piece {
         Self { pos, tris, tags }
     }
 
+    /// Merges vertices at exactly equal positions and drops the triangles that then
+    /// repeat a vertex (slivers of rounding, e.g. cuts through a nearly flat triangle
+    /// meeting at one point). Each dropped triangle takes an edge and its reverse with
+    /// it, so a closed piece stays closed.
+    pub fn weld(&mut self) {
+        let mut map: FastMap<[u64; 3], u32> = FastMap::default();
+        let mut pos = Vec::with_capacity(self.pos.len());
+        let remap: Vec<u32> = self
+            .pos
+            .iter()
+            .map(|p| {
+                let key = [p.x + 0.0, p.y + 0.0, p.z + 0.0].map(f64::to_bits);
+                *map.entry(key).or_insert_with(|| {
+                    pos.push(*p);
+                    (pos.len() - 1) as u32
+                })
+            })
+            .collect();
+        if pos.len() == self.pos.len() {
+            return;
+        }
+        self.pos = pos;
+        let mut tris = Vec::with_capacity(self.tris.len());
+        let mut tags = Vec::with_capacity(self.tags.len());
+        for (t, &tag) in self.tris.iter().zip(&self.tags) {
+            let t = t.map(|i| remap[i as usize]);
+            if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
+                tris.push(t);
+                tags.push(tag);
+            }
+        }
+        self.tris = tris;
+        self.tags = tags;
+        self.compact();
+    }
+
     /// `true` when the piece has no triangles.
     pub fn is_empty(&self) -> bool {
         self.tris.is_empty()

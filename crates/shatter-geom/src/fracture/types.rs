@@ -39,6 +39,24 @@ pub struct Bond {
 }
 
 /// A fractured object: fragments and the bond graph between them.
+///
+/// ```
+/// use shatter_geom::fracture::{fracture, FractureParams, Method};
+/// use shatter_geom::shapes;
+///
+/// let params = FractureParams {
+///     method: Method::Slice { pieces: 0, planes: Some(vec![(Default::default(), shatter_geom::DVec3::X)]) },
+///     seed: 0,
+/// };
+/// let result = fracture(&shapes::cube(), &params)?;
+/// // The plane x = 0 halves the cube: two fragments, one bond across the cut.
+/// assert_eq!(result.fragments.len(), 2);
+/// assert_eq!(result.bonds.len(), 1);
+/// assert_eq!(result.bonds_of(0).count(), 1);
+/// assert!((result.bonds[0].area - 1.0).abs() < 1e-12);
+/// assert!((result.total_volume() - 1.0).abs() < 1e-12);
+/// # Ok::<(), shatter_geom::fracture::FractureError>(())
+/// ```
 #[derive(Debug, Clone, Default)]
 pub struct Fracture {
     /// The fragments.

@@ -32,6 +32,7 @@ pub(crate) fn voronoi(
         let tag = (i.min(j) as u64) * k + i.max(j) as u64;
         Plane { n, d, tag }
     };
+    let bounding_box = box_piece(mesh);
     let mut cells = Vec::new();
     let mut order: Vec<(f64, usize)> = Vec::with_capacity(seeds.len());
     'seeds: for i in 0..seeds.len() {
@@ -53,19 +54,37 @@ pub(crate) fn voronoi(
         }
         order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         let radius2 = |p: &Piece| p.pos.iter().map(|&x| dist2(x, si)).fold(0.0, f64::max);
-        let mut cell: Option<Piece> = None;
-        let mut r2 = radius2(mesh);
+        // First the convex cell itself, clipped from the mesh's bounding box (a dozen
+        // triangles, so cheap): only the bisectors that end up as its faces need to
+        // cut the mesh, which saves the cuts a later plane would make redundant.
+        let mut poly = bounding_box.clone();
+        let mut r2 = radius2(&poly);
         for &(d2, j) in &order {
-            // |sj - si| > 2 r: the bisector cannot reach the cell.
             if d2 > 4.0 * r2 {
                 break;
             }
-            let current = cell.as_ref().unwrap_or(mesh);
-            if let Some(next) = clip(current, &bisector(i, j), eps) {
+            if let Some(next) = clip(&poly, &bisector(i, j), eps) {
                 if next.is_empty() {
                     continue 'seeds;
                 }
                 r2 = radius2(&next);
+                poly = next;
+            }
+        }
+        let mut faces: Vec<u64> = poly.tags.clone();
+        faces.sort_unstable();
+        faces.dedup();
+        let mut cell: Option<Piece> = None;
+        for &(_, j) in &order {
+            let plane = bisector(i, j);
+            if faces.binary_search(&plane.tag).is_err() {
+                continue;
+            }
+            let current = cell.as_ref().unwrap_or(mesh);
+            if let Some(next) = clip(current, &plane, eps) {
+                if next.is_empty() {
+                    continue 'seeds;
+                }
                 cell = Some(next);
             }
         }
@@ -90,4 +109,38 @@ pub(crate) fn mesh_scale(p: &Piece) -> f64 {
     }
     let (lo, hi) = super::seeds::bounds(&p.pos);
     (hi - lo).length().max(f64::MIN_POSITIVE)
+}
+
+/// A closed box around `mesh` (its bounds grown by a tenth), all faces tagged surface.
+fn box_piece(mesh: &Piece) -> Piece {
+    let (lo, hi) = super::seeds::bounds(&mesh.pos);
+    let pad = (hi - lo) * 0.1 + DVec3::splat(1e-9);
+    let (lo, hi) = (lo - pad, hi + pad);
+    let pos: Vec<DVec3> = (0..8)
+        .map(|i| {
+            DVec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            )
+        })
+        .collect();
+    let quads = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    let mut tris = Vec::with_capacity(12);
+    for q in quads {
+        tris.push([q[0], q[1], q[2]]);
+        tris.push([q[0], q[2], q[3]]);
+    }
+    Piece {
+        pos,
+        tags: vec![super::piece::SURFACE; 12],
+        tris,
+    }
 }
