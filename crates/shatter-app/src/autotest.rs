@@ -86,8 +86,10 @@ fn run_script(
     let sim_in_step = stats.time - test.step_time;
     if frames_in_step > STEP_TIMEOUT_FRAMES {
         error!("autotest stuck at step {}", test.step);
-        test.record
-            .insert("error".into(), json!(format!("stuck at step {}", test.step)));
+        test.record.insert(
+            "error".into(),
+            json!(format!("stuck at step {}", test.step)),
+        );
         write_state(&test);
         exit.write(AppExit::error());
         return;

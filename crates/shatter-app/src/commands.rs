@@ -79,12 +79,8 @@ pub enum PatternChoice {
 
 impl PatternChoice {
     /// Every pattern, in the order the UI lists them.
-    pub const ALL: [PatternChoice; 4] = [
-        Self::Uniform,
-        Self::Clustered,
-        Self::Radial,
-        Self::Splinter,
-    ];
+    pub const ALL: [PatternChoice; 4] =
+        [Self::Uniform, Self::Clustered, Self::Radial, Self::Splinter];
 
     /// Lower-case name, as in scene files and the CLI.
     pub fn name(self) -> &'static str {

@@ -39,14 +39,13 @@ pub struct ShatterAppPlugin {
 
 impl Plugin for ShatterAppPlugin {
     fn build(&self, app: &mut App) {
-        app.add_plugins(EguiPlugin::default())
-            .add_plugins((
-                camera::CameraPlugin::default(),
-                render::SceneRenderPlugin::default(),
-                ui::UiPlugin,
-                input::ClickPlugin,
-                sim_plugin::SimPlugin,
-            ));
+        app.add_plugins(EguiPlugin::default()).add_plugins((
+            camera::CameraPlugin::default(),
+            render::SceneRenderPlugin::default(),
+            ui::UiPlugin,
+            input::ClickPlugin,
+            sim_plugin::SimPlugin,
+        ));
         if let Some(dir) = &self.autotest {
             app.add_plugins(autotest::AutotestPlugin { dir: dir.clone() });
         }

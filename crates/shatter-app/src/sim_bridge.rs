@@ -212,7 +212,10 @@ impl SimBridge {
         if o.build != key.build {
             return None;
         }
-        Some((o.fracture.fragments.get(key.fragment as usize)?, o.spec.color))
+        Some((
+            o.fracture.fragments.get(key.fragment as usize)?,
+            o.spec.color,
+        ))
     }
 
     /// The specification an object was built from (for Edit).
@@ -303,7 +306,14 @@ fn stand_in_fracture(spec: &ObjectSpec) -> Fracture {
                 let cnt = DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64);
                 let lo = size * (cell / cnt - 0.5);
                 let hi = size * ((cell + 1.0) / cnt - 0.5);
-                let on = [i == 0, i + 1 == n[0], j == 0, j + 1 == n[1], k == 0, k + 1 == n[2]];
+                let on = [
+                    i == 0,
+                    i + 1 == n[0],
+                    j == 0,
+                    j + 1 == n[1],
+                    k == 0,
+                    k + 1 == n[2],
+                ];
                 fragments.push(box_fragment(lo, hi, on));
             }
         }

@@ -30,7 +30,10 @@ pub fn apply_commands(
             Ok(Some(id)) => ui_state.object_added(id),
             Ok(None) => {}
             Err(e) => {
-                warn!("command failed: {e} ({})", what.chars().take(60).collect::<String>());
+                warn!(
+                    "command failed: {e} ({})",
+                    what.chars().take(60).collect::<String>()
+                );
                 ui_state.status = e;
             }
         }

@@ -53,12 +53,19 @@ fn autotest_session_breaks_bonds_and_saves_screenshots() {
         .arg(&dir)
         .status()
         .expect("run shatter-app");
-    assert!(status.success(), "shatter-app --autotest exited with {status}");
+    assert!(
+        status.success(),
+        "shatter-app --autotest exited with {status}"
+    );
 
     let state: Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("state.json")).unwrap()).unwrap();
     println!("{}", serde_json::to_string_pretty(&state).unwrap());
-    let get = |k: &str| state[k].as_u64().unwrap_or_else(|| panic!("no {k} in state.json"));
+    let get = |k: &str| {
+        state[k]
+            .as_u64()
+            .unwrap_or_else(|| panic!("no {k} in state.json"))
+    };
     assert!(get("bonds_broken") > 0, "the shot broke no bond");
     assert!(get("fragments") > 0);
     assert!(get("bodies") > 0);
@@ -79,13 +86,25 @@ fn autotest_session_breaks_bonds_and_saves_screenshots() {
         assert!(w >= 640 && h >= 360, "{}: {w}x{h}", path.display());
         // A blank (single-colour) frame has zero variance; a lit scene with panels has
         // sky, ground, shadows and text.
-        assert!(var > 100.0, "{} looks blank (variance {var:.1})", path.display());
-        assert!((10.0..245.0).contains(&mean), "{}: mean {mean:.1}", path.display());
+        assert!(
+            var > 100.0,
+            "{} looks blank (variance {var:.1})",
+            path.display()
+        );
+        assert!(
+            (10.0..245.0).contains(&mean),
+            "{}: mean {mean:.1}",
+            path.display()
+        );
     }
     // The shot visibly changed the picture.
     let a = read_png(&dir.join("01_scene.png"));
     let b = read_png(&dir.join("03_after_shot.png"));
-    let changed = a.iter().zip(&b).filter(|(x, y)| x.abs_diff(**y) > 24).count();
+    let changed = a
+        .iter()
+        .zip(&b)
+        .filter(|(x, y)| x.abs_diff(**y) > 24)
+        .count();
     assert!(
         changed > a.len() / 200,
         "01_scene and 03_after_shot are almost identical ({changed} bytes differ)"

@@ -42,7 +42,11 @@ fn non_integer_random_vertices_is_reported_next_to_the_field() {
     let err = form
         .validate(&TransformForm::default(), &any_mesh)
         .unwrap_err();
-    assert!(err.get("random_vertices").unwrap().contains("not an integer"));
+    assert!(
+        err.get("random_vertices")
+            .unwrap()
+            .contains("not an integer")
+    );
     assert_eq!(err.0.len(), 1, "only the bad field is flagged: {err:?}");
 }
 
@@ -204,7 +208,12 @@ fn negative_radius_keeps_the_previous_explosion() {
     assert_eq!(s.force.radius, 3.0);
     s.force_form.radius = "-2".into();
     s.update_force();
-    assert!(s.force_errors.get("radius").unwrap().contains("greater than 0"));
+    assert!(
+        s.force_errors
+            .get("radius")
+            .unwrap()
+            .contains("greater than 0")
+    );
     assert_eq!(s.force.radius, 3.0);
     assert!(s.force.enabled);
 }
@@ -297,7 +306,13 @@ fn scene_file_save_and_load_check_the_path() {
         path: file.display().to_string(),
     };
     assert_eq!(form.save().unwrap(), SimCommand::SaveScene(file.clone()));
-    assert!(form.load().unwrap_err().get("path").unwrap().contains("no file"));
+    assert!(
+        form.load()
+            .unwrap_err()
+            .get("path")
+            .unwrap()
+            .contains("no file")
+    );
     std::fs::write(&file, "").unwrap();
     assert_eq!(form.load().unwrap(), SimCommand::LoadScene(file));
     let bad = SceneFileForm {
@@ -307,7 +322,14 @@ fn scene_file_save_and_load_check_the_path() {
     let no_dir = SceneFileForm {
         path: dir.join("missing/s.toml").display().to_string(),
     };
-    assert!(no_dir.save().unwrap_err().get("path").unwrap().contains("does not exist"));
+    assert!(
+        no_dir
+            .save()
+            .unwrap_err()
+            .get("path")
+            .unwrap()
+            .contains("does not exist")
+    );
 }
 
 #[test]

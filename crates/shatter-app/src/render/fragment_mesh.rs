@@ -44,7 +44,10 @@ pub fn flat_mesh(fragment: &Fragment, color: [f32; 3]) -> FlatMesh {
     let interior = interior_color(color);
     for t in 0..mesh.triangles.len() {
         let [a, b, c] = mesh.triangle(t);
-        let normal = (b - a).cross(c - a).try_normalize().unwrap_or(glam::DVec3::Y);
+        let normal = (b - a)
+            .cross(c - a)
+            .try_normalize()
+            .unwrap_or(glam::DVec3::Y);
         let is_interior = fragment.interior.get(t).copied().unwrap_or(false);
         let col = if is_interior { interior } else { surface };
         for p in [a, b, c] {
@@ -102,7 +105,10 @@ mod tests {
             // All three vertices share the face normal (flat shading).
             assert_eq!(flat.normals[tri * 3], flat.normals[tri * 3 + 2]);
             let p = glam::Vec3::from_array(flat.positions[tri * 3]);
-            assert!(n.dot(p - centroid) > 0.0, "normal of face {tri} points inward");
+            assert!(
+                n.dot(p - centroid) > 0.0,
+                "normal of face {tri} points inward"
+            );
         }
     }
 

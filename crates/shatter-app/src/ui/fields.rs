@@ -111,7 +111,11 @@ mod tests {
         assert_eq!(parse_count("12"), Ok(12));
         assert!(parse_count("1.5").unwrap_err().contains("not an integer"));
         assert!(parse_count("-3").unwrap_err().contains("negative"));
-        assert!(parse_count("abc").unwrap_err().contains("not a whole number"));
+        assert!(
+            parse_count("abc")
+                .unwrap_err()
+                .contains("not a whole number")
+        );
         assert!(parse_count("").is_err());
     }
 
@@ -138,13 +142,21 @@ mod tests {
             parse_vec3(&s3("1", "2", "3"), parse_real),
             Ok(DVec3::new(1.0, 2.0, 3.0))
         );
-        assert!(parse_vec3(&s3("1", "x", "3"), parse_real)
-            .unwrap_err()
-            .starts_with("y:"));
-        assert!(parse_vec3(&s3("1", "1", "0"), parse_positive)
-            .unwrap_err()
-            .starts_with("z:"));
+        assert!(
+            parse_vec3(&s3("1", "x", "3"), parse_real)
+                .unwrap_err()
+                .starts_with("y:")
+        );
+        assert!(
+            parse_vec3(&s3("1", "1", "0"), parse_positive)
+                .unwrap_err()
+                .starts_with("z:")
+        );
         assert_eq!(parse_color(&s3("1", "0.5", "0")), Ok([1.0, 0.5, 0.0]));
-        assert!(parse_color(&s3("1", "2", "0")).unwrap_err().starts_with("G:"));
+        assert!(
+            parse_color(&s3("1", "2", "0"))
+                .unwrap_err()
+                .starts_with("G:")
+        );
     }
 }

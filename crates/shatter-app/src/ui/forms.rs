@@ -96,11 +96,7 @@ impl ShapeKind {
     }
 }
 
-fn shape_choice(
-    kind: ShapeKind,
-    path: &str,
-    check: MeshCheck<'_>,
-) -> Result<ShapeChoice, String> {
+fn shape_choice(kind: ShapeKind, path: &str, check: MeshCheck<'_>) -> Result<ShapeChoice, String> {
     Ok(match kind {
         ShapeKind::Cube => ShapeChoice::Cube,
         ShapeKind::Capsule => ShapeChoice::Capsule,
@@ -188,10 +184,7 @@ impl AddObjectForm {
         check: MeshCheck<'_>,
     ) -> Result<ObjectSpec, FieldErrors> {
         let mut e = FieldErrors::default();
-        let shape = e.check(
-            "shape",
-            shape_choice(self.shape, &self.custom_path, check),
-        );
+        let shape = e.check("shape", shape_choice(self.shape, &self.custom_path, check));
         let random_vertices = e.check("random_vertices", parse_count(&self.random_vertices));
         let break_force = e.check("break_force", parse_positive(&self.break_force));
         let skip = e.check("skip", parse_count(&self.skip));

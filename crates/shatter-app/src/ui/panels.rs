@@ -124,7 +124,13 @@ fn text_row(ui: &mut Ui, label: &str, text: &mut String, errors: &FieldErrors, f
     error_line(ui, errors, field);
 }
 
-fn triple_row(ui: &mut Ui, label: &str, texts: &mut [String; 3], errors: &FieldErrors, field: &str) {
+fn triple_row(
+    ui: &mut Ui,
+    label: &str,
+    texts: &mut [String; 3],
+    errors: &FieldErrors,
+    field: &str,
+) {
     ui.horizontal(|ui| {
         ui.label(label);
         for t in texts.iter_mut() {
@@ -199,8 +205,20 @@ fn add_object_panel(ui: &mut Ui, s: &mut UiState, out: &mut Vec<SimCommand>) {
             } else {
                 "Pieces"
             };
-            text_row(ui, rv, &mut f.random_vertices, &s.add_errors, "random_vertices");
-            text_row(ui, "Breakforce", &mut f.break_force, &s.add_errors, "break_force");
+            text_row(
+                ui,
+                rv,
+                &mut f.random_vertices,
+                &s.add_errors,
+                "random_vertices",
+            );
+            text_row(
+                ui,
+                "Breakforce",
+                &mut f.break_force,
+                &s.add_errors,
+                "break_force",
+            );
             if f.method == MethodChoice::Tetra {
                 text_row(ui, "Skip", &mut f.skip, &s.add_errors, "skip");
                 ui.checkbox(&mut f.center, "Center");
@@ -216,7 +234,13 @@ fn add_object_panel(ui: &mut Ui, s: &mut UiState, out: &mut Vec<SimCommand>) {
             }
         }
         AddObjectPage::Transform => {
-            triple_row(ui, "Position", &mut s.transform.position, &s.add_errors, "position");
+            triple_row(
+                ui,
+                "Position",
+                &mut s.transform.position,
+                &s.add_errors,
+                "position",
+            );
             triple_row(ui, "Scale", &mut s.transform.scale, &s.add_errors, "scale");
             ui.horizontal(|ui| {
                 if ui.button("Draw").clicked()
@@ -234,7 +258,14 @@ fn add_object_panel(ui: &mut Ui, s: &mut UiState, out: &mut Vec<SimCommand>) {
                 }
             });
             // Errors of the first page (e.g. the file vanished) show here too.
-            for field in ["shape", "random_vertices", "break_force", "skip", "last", "color"] {
+            for field in [
+                "shape",
+                "random_vertices",
+                "break_force",
+                "skip",
+                "last",
+                "color",
+            ] {
                 error_line(ui, &s.add_errors, field);
             }
         }
@@ -269,8 +300,20 @@ fn force_panel(ui: &mut Ui, s: &mut UiState) {
         ui.checkbox(&mut s.force_form.enabled, "isOn");
     });
     if s.force_form.enabled {
-        text_row(ui, "Radius", &mut s.force_form.radius, &s.force_errors, "radius");
-        text_row(ui, "Power", &mut s.force_form.power, &s.force_errors, "power");
+        text_row(
+            ui,
+            "Radius",
+            &mut s.force_form.radius,
+            &s.force_errors,
+            "radius",
+        );
+        text_row(
+            ui,
+            "Power",
+            &mut s.force_form.power,
+            &s.force_errors,
+            "power",
+        );
     }
     s.update_force();
 }

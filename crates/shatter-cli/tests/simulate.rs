@@ -1,0 +1,60 @@
+//! `shatter simulate` and `shatter bench step`, end to end through the real binary.
+#![allow(clippy::unwrap_used)]
+
+mod common;
+
+use std::path::PathBuf;
+
+use common::shatter;
+
+fn scene(name: &str) -> String {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets/scenes");
+    root.join(name).to_string_lossy().into_owned()
+}
+
+#[test]
+fn explosion_scene_breaks_bonds_and_repeats_its_digest() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = scene("explosion.toml");
+    let args = ["simulate", path.as_str(), "--seconds", "1.5", "--json"];
+    let first = shatter(dir.path(), &args).ok().json();
+    let second = shatter(dir.path(), &args).ok().json();
+    assert_eq!(first["steps"], 90);
+    assert!(first["bonds_total"].as_u64().unwrap() > 0);
+    // The explosion at t = 1 s blows the corner off the block.
+    assert!(
+        first["bonds_broken"].as_u64().unwrap() > 0,
+        "no bond broke: {first}"
+    );
+    assert!(first["bodies"].as_u64().unwrap() > 1, "{first}");
+    assert_eq!(first["digest"], second["digest"], "same scene, same digest");
+}
+
+#[test]
+fn before_the_explosion_nothing_breaks() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = scene("explosion.toml");
+    let json = shatter(
+        dir.path(),
+        &["simulate", path.as_str(), "--seconds", "0.5", "--json"],
+    )
+    .ok()
+    .json();
+    assert_eq!(json["bonds_broken"], 0, "{json}");
+}
+
+#[test]
+fn bad_scenes_exit_2_naming_the_problem() {
+    let dir = tempfile::tempdir().unwrap();
+    shatter(dir.path(), &["simulate", "missing.toml"]).bad_input(&["missing.toml"]);
+
+    std::fs::write(
+        dir.path().join("cheese.toml"),
+        "[[objects]]\nshape = \"cube\"\nmaterial = \"cheese\"\n",
+    )
+    .unwrap();
+    shatter(dir.path(), &["simulate", "cheese.toml"]).bad_input(&["material", "cheese"]);
+
+    std::fs::write(dir.path().join("typo.toml"), "[world]\ngravty = -9.81\n").unwrap();
+    shatter(dir.path(), &["simulate", "typo.toml"]).bad_input(&["gravty", "line 2"]);
+}
