@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Every check CI runs, exactly as CI runs it: formatting, lints, all tests, and the app's
+# Every check CI runs, exactly as CI runs it: formatting, lints, all tests, the app's
 # scripted session in a real window under Xvfb (needs the Debian packages .ci/run installs:
-# xvfb xauth mesa-vulkan-drivers libgl1-mesa-dri).
+# xvfb xauth mesa-vulkan-drivers libgl1-mesa-dri), and the web build in headless Chromium
+# (web/e2e.sh: installs Chromium and playwright-core if missing, builds web/dist).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$HOME/.cache/shatter-target}"
@@ -9,3 +10,4 @@ cargo fmt --all --check
 cargo clippy --workspace --all-targets --locked -- -D warnings
 cargo test --workspace --locked
 bash scripts/app-autotest.sh "$CARGO_TARGET_DIR/app-autotest"
+bash web/e2e.sh "$CARGO_TARGET_DIR/web-e2e.png"

@@ -3,7 +3,7 @@
 //! screenshots and writes `DIR/state.json`, then exits.
 //!
 //! Script: screenshot the scene; add an object through the Add Object panel; Start; fire
-//! at the wall; screenshot the debris; explode next to the second object; Pause; Reset.
+//! at the wall; screenshot the debris; explode at the crate; Pause; Reset.
 
 use std::path::PathBuf;
 
@@ -85,11 +85,10 @@ fn run_script(
     let frames_in_step = frame.saturating_sub(test.step_frame);
     let sim_in_step = stats.time - test.step_time;
     if frames_in_step > STEP_TIMEOUT_FRAMES {
-        error!("autotest stuck at step {}", test.step);
-        test.record.insert(
-            "error".into(),
-            json!(format!("stuck at step {}", test.step)),
-        );
+        let step = test.step;
+        error!("autotest stuck at step {step}");
+        test.record
+            .insert("error".into(), json!(format!("stuck at step {step}")));
         write_state(&test);
         exit.write(AppExit::error());
         return;
@@ -152,7 +151,7 @@ fn run_script(
                 .object_spec(0)
                 .map(|s| to_bevy(s.position.as_vec3()))
                 .unwrap_or(Vec3::new(0.0, 2.0, 0.0));
-            click.0 = screen_of(target + Vec3::new(0.6, 0.3, 0.0));
+            click.0 = screen_of(target);
             true
         }
         8 => sim_in_step >= 0.4,
@@ -162,16 +161,16 @@ fn run_script(
             true
         }
         10 => sim_in_step >= 1.0,
-        // An explosion next to the second object.
+        // An explosion at the crate (object 3 of the default scene).
         11 => {
             ui_state.force_form.enabled = true;
-            ui_state.force_form.radius = "5".into();
-            ui_state.force_form.power = "600".into();
+            ui_state.force_form.radius = "1.5".into();
+            ui_state.force_form.power = "150".into();
             ui_state.update_force();
             let target = bridge
-                .object_spec(1)
+                .object_spec(3)
                 .map(|s| to_bevy(s.position.as_vec3()))
-                .unwrap_or(Vec3::new(-4.0, 1.0, 4.0));
+                .unwrap_or(Vec3::new(-3.0, 0.5, 1.5));
             click.0 = screen_of(target);
             test.record
                 .insert("before_explosion".into(), stats_json(&stats));

@@ -25,10 +25,11 @@ pub struct OrbitCamera {
 impl Default for OrbitCamera {
     fn default() -> Self {
         Self {
-            focus: Vec3::new(0.0, 2.0, 0.0),
-            yaw: 0.35,
-            pitch: 0.32,
-            distance: 20.0,
+            // The default scene's wall, in the middle of the free part of the window.
+            focus: Vec3::new(0.0, 0.9, 0.8),
+            yaw: 0.3,
+            pitch: 0.3,
+            distance: 8.5,
         }
     }
 }

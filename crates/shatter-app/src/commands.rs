@@ -20,8 +20,12 @@ pub enum ShapeChoice {
     Capsule,
     /// Unity's cylinder (88 vertices).
     Cylinder,
-    /// A sphere (projectiles).
+    /// A sphere (radius 0.5).
     Sphere,
+    /// A torus (a shape with a hole).
+    Torus,
+    /// The thesis's concave test model (958 vertices, 1394 triangles).
+    Bird,
     /// A user mesh read from a file (OBJ, STL, glTF/GLB).
     Custom(PathBuf),
 }
@@ -34,6 +38,8 @@ impl ShapeChoice {
             ShapeChoice::Capsule => "capsule",
             ShapeChoice::Cylinder => "cylinder",
             ShapeChoice::Sphere => "sphere",
+            ShapeChoice::Torus => "torus",
+            ShapeChoice::Bird => "bird",
             ShapeChoice::Custom(_) => "custom",
         }
     }
@@ -48,11 +54,13 @@ pub enum MethodChoice {
     Voronoi,
     /// Random planes slicing the mesh.
     Slice,
+    /// A regular grid of bricks (box-shaped objects only).
+    Grid,
 }
 
 impl MethodChoice {
     /// Every method, in the order the UI lists them.
-    pub const ALL: [MethodChoice; 3] = [Self::Tetra, Self::Voronoi, Self::Slice];
+    pub const ALL: [MethodChoice; 4] = [Self::Tetra, Self::Voronoi, Self::Slice, Self::Grid];
 
     /// Lower-case name, as in scene files and the CLI.
     pub fn name(self) -> &'static str {
@@ -60,6 +68,7 @@ impl MethodChoice {
             Self::Tetra => "tetra",
             Self::Voronoi => "voronoi",
             Self::Slice => "slice",
+            Self::Grid => "grid",
         }
     }
 }
@@ -128,7 +137,8 @@ pub struct ObjectSpec {
     pub method: MethodChoice,
     /// Seed pattern (Voronoi).
     pub pattern: PatternChoice,
-    /// "Random Vertices": random points added (tetra) or number of pieces (voronoi, slice).
+    /// "Random Vertices": random points added (tetra), number of pieces (voronoi, slice)
+    /// or bricks along x (grid).
     pub random_vertices: u32,
     /// "Skip": take only every (skip+1)-th surface vertex.
     pub skip: u32,
@@ -193,8 +203,9 @@ impl Default for ForceSpec {
     fn default() -> Self {
         Self {
             enabled: false,
-            radius: 4.0,
-            power: 400.0,
+            // Breaks a few bricks of the default wall, not the whole scene.
+            radius: 1.5,
+            power: 150.0,
         }
     }
 }

@@ -1,4 +1,5 @@
-//! Left clicks in the 3D view: fire, explode, select for Edit, or delete.
+//! Left clicks in the 3D view: fire, explode, select for Edit, or delete; and the
+//! keyboard shortcuts of the scene controls (Enter: Start, P: Pause, R: Reset).
 
 use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
@@ -6,6 +7,7 @@ use bevy_egui::input::EguiWantsInput;
 
 use crate::camera::OrbitCamera;
 use crate::sim_bridge::{SimBridge, to_sim};
+use crate::commands::SimCommand;
 use crate::ui::{ClickOutcome, PendingCommands, UiState};
 
 /// A click to perform as if the user had made it (used by the autotest), in window
@@ -20,7 +22,7 @@ pub struct ClickPlugin;
 impl Plugin for ClickPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<SyntheticClick>()
-            .add_systems(Update, handle_click);
+            .add_systems(Update, (handle_click, handle_shortcuts));
     }
 }
 
@@ -59,10 +61,35 @@ fn handle_click(
         ClickOutcome::Command(cmd) => pending.0.push(cmd),
         ClickOutcome::Edit(id) => {
             if let Some(spec) = bridge.object_spec(id) {
-                let spec = spec.clone();
                 ui_state.edit_object(id, &spec);
             }
         }
         ClickOutcome::Nothing => {}
+    }
+}
+
+/// The scene control a key stands for, if any.
+pub fn shortcut(key: KeyCode) -> Option<SimCommand> {
+    match key {
+        KeyCode::Enter | KeyCode::NumpadEnter => Some(SimCommand::Start),
+        KeyCode::KeyP => Some(SimCommand::TogglePause),
+        KeyCode::KeyR => Some(SimCommand::Reset),
+        _ => None,
+    }
+}
+
+fn handle_shortcuts(
+    keys: Res<ButtonInput<KeyCode>>,
+    egui_input: Option<Res<EguiWantsInput>>,
+    mut pending: ResMut<PendingCommands>,
+) {
+    // Typing in a text field is not a shortcut.
+    if egui_input.is_some_and(|e| e.wants_keyboard_input()) {
+        return;
+    }
+    for key in keys.get_just_pressed() {
+        if let Some(cmd) = shortcut(*key) {
+            pending.0.push(cmd);
+        }
     }
 }

@@ -21,8 +21,11 @@ pub mod camera;
 pub mod commands;
 pub mod input;
 pub mod render;
+pub mod scene_store;
 pub mod sim_bridge;
 pub mod sim_plugin;
+pub mod spec_convert;
+pub mod state_log;
 pub mod ui;
 
 use std::path::PathBuf;
@@ -35,6 +38,8 @@ use bevy_egui::EguiPlugin;
 pub struct ShatterAppPlugin {
     /// Run the scripted session and write its results to this folder.
     pub autotest: Option<PathBuf>,
+    /// Print the state as a `SHATTER_STATE` JSON line twice a second (the web page).
+    pub log_state: bool,
 }
 
 impl Plugin for ShatterAppPlugin {
@@ -46,6 +51,9 @@ impl Plugin for ShatterAppPlugin {
             input::ClickPlugin,
             sim_plugin::SimPlugin,
         ));
+        if self.log_state {
+            app.add_plugins(state_log::StateLogPlugin::default());
+        }
         if let Some(dir) = &self.autotest {
             app.add_plugins(autotest::AutotestPlugin { dir: dir.clone() });
         }

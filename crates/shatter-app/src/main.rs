@@ -53,6 +53,10 @@ fn main() -> ExitCode {
         } else {
             PresentMode::AutoVsync
         },
+        // In the browser: draw into the page's canvas (web/index.html) and keep the
+        // page from scrolling or opening menus on the app's keys and clicks.
+        canvas: cfg!(target_arch = "wasm32").then(|| "#shatter-canvas".to_owned()),
+        prevent_default_event_handling: true,
         ..default()
     };
     let exit = App::new()
@@ -60,7 +64,10 @@ fn main() -> ExitCode {
             primary_window: Some(window),
             ..default()
         }))
-        .add_plugins(ShatterAppPlugin { autotest })
+        .add_plugins(ShatterAppPlugin {
+            autotest,
+            log_state: cfg!(target_arch = "wasm32"),
+        })
         .run();
     match exit {
         AppExit::Success => ExitCode::SUCCESS,

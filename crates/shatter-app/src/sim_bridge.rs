@@ -1,17 +1,24 @@
 //! The only module that talks to the simulation.
 //!
-//! Everything else in the app sees [`SimBridge`]: it applies [`SimCommand`]s, advances
-//! time, and reads back what to draw (fragment geometry once, poses every frame) and the
-//! statistics for the overlay.
-//!
-//! STAND-IN: until `shatter-sim` lands, objects are box grids that stay where they were
-//! put; the interface is the one the app keeps.
+//! Everything else in the app sees [`SimBridge`]: it applies [`SimCommand`]s to a
+//! [`shatter_sim::World`], advances it in fixed steps, and reads back what to draw
+//! (fragment and projectile meshes once, poses every frame) and the statistics for the
+//! overlay. The conversions between the panels' [`ObjectSpec`] and the simulation's own
+//! spec live in [`crate::spec_convert`].
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
 use bevy::prelude::{Quat, Resource, Vec3};
-use glam::{DMat3, DVec3};
+use shatter_sim::scene::Scene;
+use shatter_sim::{ExplosionSpec, ProjectileShape, RunState, SimEvent, World};
+
+use crate::commands::{BondModelChoice, ObjectId, ObjectSpec, ShapeChoice, SimCommand};
+use crate::render::fragment_mesh::{FlatMesh, flat_mesh, flat_trimesh};
+use crate::spec_convert::{from_sim_spec, projectile_points, to_sim_bond_model, to_sim_spec};
+
+/// The scene the app opens with (also embedded in the web build).
+pub const DEFAULT_SCENE: &str = include_str!("../../../assets/scenes/default.toml");
 
 /// Bevy's vector (glam 0.32) from the simulation's (glam 0.33).
 pub fn to_bevy(v: glam::Vec3) -> Vec3 {
@@ -27,25 +34,23 @@ pub fn to_sim(v: Vec3) -> glam::Vec3 {
 pub fn quat_to_bevy(q: glam::Quat) -> Quat {
     Quat::from_array(q.to_array())
 }
-use shatter_geom::TriMesh;
-use shatter_geom::fracture::{Fracture, Fragment};
 
-use crate::commands::{
-    BondModelChoice, MethodChoice, ObjectId, ObjectSpec, PatternChoice, ShapeChoice, SimCommand,
-};
+/// Keys of projectiles have this bit set in [`PieceKey::object`].
+pub const PROJECTILE_BIT: u64 = 1 << 40;
 
-/// Identifies one drawable piece: a fragment of one build of an object.
+/// Identifies one drawable piece: a fragment of one build of an object, or a projectile.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct PieceKey {
-    /// Object (or projectile) id.
+    /// Object id, or [`PROJECTILE_BIT`] | the projectile's firing index.
     pub object: ObjectId,
-    /// Bumped each time the object is rebuilt, so stale meshes are replaced.
+    /// Bumped whenever geometry may have changed (edit, load, reset, clean), so stale
+    /// meshes are replaced.
     pub build: u32,
-    /// Fragment index.
+    /// Fragment index (0 for projectiles).
     pub fragment: u32,
 }
 
-/// Where a piece is this frame: the transform from the fragment's mesh frame to the world.
+/// Where a piece is this frame: the transform from the piece's mesh frame to the world.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PiecePose {
     /// Which piece.
@@ -59,15 +64,15 @@ pub struct PiecePose {
 /// Numbers for the overlay and the autotest.
 #[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
 pub struct SimStats {
-    /// Rigid bodies in the world.
+    /// Rigid bodies in the world (objects and projectiles, not the ground).
     pub bodies: usize,
-    /// Fragments alive.
+    /// Fragments with a body.
     pub fragments: usize,
     /// Bonds (joints or cluster bonds) in all objects.
     pub bonds_total: usize,
     /// Bonds broken since start.
     pub bonds_broken: usize,
-    /// Mean wall-clock time of the last steps, in ms.
+    /// Smoothed wall-clock time of one simulation step, in ms.
     pub step_ms: f64,
     /// Simulated seconds since start.
     pub time: f64,
@@ -77,189 +82,336 @@ pub struct SimStats {
     pub paused: bool,
 }
 
-struct Object {
-    spec: ObjectSpec,
-    build: u32,
-    fracture: Fracture,
-}
+/// At most this many fixed steps per frame; time beyond is dropped (the simulation then
+/// runs slower than the clock instead of freezing the window).
+pub const MAX_STEPS_PER_FRAME: usize = 4;
 
 /// The simulation as the app sees it.
-#[derive(Resource, Default)]
+#[derive(Resource)]
 pub struct SimBridge {
-    objects: BTreeMap<ObjectId, Object>,
-    next_id: ObjectId,
-    running: bool,
-    paused: bool,
-    time: f64,
+    world: World,
+    /// Bond model for objects added from now on (`None`: the world's default).
     bond_model: Option<BondModelChoice>,
+    build: u32,
+    accumulator: f64,
+    step_ms: f64,
+}
+
+impl Default for SimBridge {
+    fn default() -> Self {
+        Self::from_world(World::new(shatter_sim::WorldSettings::default()))
+    }
 }
 
 impl SimBridge {
-    /// The default scene: a wall and a few objects on the ground.
-    pub fn default_scene() -> Self {
-        let mut b = Self::default();
-        let base = ObjectSpec {
-            shape: ShapeChoice::Cube,
-            method: MethodChoice::Voronoi,
-            pattern: PatternChoice::Uniform,
-            random_vertices: 60,
-            skip: 0,
-            center: false,
-            break_force: 200.0,
-            lifetime: None,
-            color: [0.75, 0.42, 0.3],
-            material: "stone".to_owned(),
-            position: DVec3::new(0.0, 2.0, 0.0),
-            scale: DVec3::new(8.0, 4.0, 0.6),
-        };
-        b.add(base.clone());
-        b.add(ObjectSpec {
-            color: [0.3, 0.6, 0.85],
-            material: "glass".to_owned(),
-            position: DVec3::new(-4.0, 1.0, 4.0),
-            scale: DVec3::new(2.0, 2.0, 2.0),
-            ..base
-        });
-        b
+    /// A bridge over an existing world.
+    pub fn from_world(world: World) -> Self {
+        Self {
+            world,
+            bond_model: None,
+            build: 0,
+            accumulator: 0.0,
+            step_ms: 0.0,
+        }
     }
 
-    /// Apply a command; returns the new object's id for [`SimCommand::AddObject`].
+    /// The default scene (`assets/scenes/default.toml`): a brick wall, the bird, a glass
+    /// pane and a crate on the ground.
+    ///
+    /// # Panics
+    /// Never for the bundled scene; it is checked by this crate's tests.
+    pub fn default_scene() -> Self {
+        Self::from_scene_text(DEFAULT_SCENE).unwrap_or_else(|e| {
+            bevy::log::error!("default scene: {e}");
+            Self::default()
+        })
+    }
+
+    /// A bridge over the world of a scene file's text.
+    pub fn from_scene_text(text: &str) -> Result<Self, String> {
+        let scene = Scene::parse(text).map_err(|e| e.to_string())?;
+        let world = scene.build(None).map_err(|e| e.to_string())?;
+        Ok(Self::from_world(world))
+    }
+
+    /// The simulation (read only).
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+
+    /// Apply a command. Returns the new object's id for [`SimCommand::AddObject`], and
+    /// `Err` with a message for the user when the simulation refuses it (nothing changes
+    /// then).
     pub fn apply(&mut self, cmd: SimCommand) -> Result<Option<ObjectId>, String> {
         match cmd {
             SimCommand::Start => {
-                self.running = true;
-                self.paused = false;
-            }
-            SimCommand::TogglePause => {
-                if self.running {
-                    self.paused = !self.paused;
+                if self.world.run_state() == RunState::Paused {
+                    self.world.resume();
+                } else {
+                    self.world.start();
                 }
             }
+            SimCommand::TogglePause => self.world.toggle_pause(),
             SimCommand::Reset => {
-                self.running = false;
-                self.paused = false;
-                self.time = 0.0;
+                self.world.reset();
+                self.new_build();
             }
-            SimCommand::Clean => self.objects.clear(),
-            SimCommand::AddObject(spec) => return Ok(Some(self.add(spec))),
+            SimCommand::Clean => {
+                self.world.clean();
+                self.new_build();
+            }
+            SimCommand::AddObject(spec) => {
+                let sim = to_sim_spec(&spec, None, self.bond_model)?;
+                let id = self.world.add_object(sim).map_err(|e| e.to_string())?;
+                return Ok(Some(u64::from(id.0)));
+            }
             SimCommand::EditObject(id, spec) => {
-                let obj = self
-                    .objects
-                    .get_mut(&id)
+                let sid = sim_id(id)?;
+                let base = self
+                    .world
+                    .object_spec(sid)
+                    .cloned()
                     .ok_or_else(|| format!("no object {id}"))?;
-                obj.fracture = stand_in_fracture(&spec);
-                obj.spec = spec;
-                obj.build += 1;
+                let sim = to_sim_spec(&spec, Some(&base), self.bond_model)?;
+                self.world
+                    .edit_object(sid, sim)
+                    .map_err(|e| e.to_string())?;
+                self.new_build();
             }
             SimCommand::DeleteObject(id) => {
-                self.objects
-                    .remove(&id)
-                    .ok_or_else(|| format!("no object {id}"))?;
+                self.world
+                    .delete_object(sim_id(id)?)
+                    .map_err(|e| e.to_string())?;
             }
-            SimCommand::Fire { .. } | SimCommand::Explode { .. } => {}
+            SimCommand::Fire { spec, from, to } => {
+                let shape = match &spec.shape {
+                    ShapeChoice::Cube => ProjectileShape::Cube,
+                    ShapeChoice::Sphere => ProjectileShape::Sphere,
+                    ShapeChoice::Capsule => ProjectileShape::Capsule,
+                    ShapeChoice::Cylinder => ProjectileShape::Cylinder,
+                    other => ProjectileShape::Custom(projectile_points(other)?),
+                };
+                let p = shatter_sim::ProjectileSpec {
+                    shape,
+                    size: spec.size as f32,
+                    density: spec.density as f32,
+                    speed: spec.speed as f32,
+                    color: spec.color,
+                    last: spec.lifetime.map(|t| t as f32),
+                    from,
+                    to,
+                };
+                p.validate("projectile").map_err(|e| e.to_string())?;
+                self.world.fire(p);
+            }
+            SimCommand::Explode {
+                position,
+                radius,
+                power,
+            } => {
+                let e = ExplosionSpec {
+                    position,
+                    radius: radius as f32,
+                    power: power as f32,
+                };
+                e.validate("explosion").map_err(|e| e.to_string())?;
+                self.world.explode(e);
+            }
             SimCommand::SetBondModel(m) => self.bond_model = Some(m),
-            SimCommand::SaveScene(p) | SimCommand::LoadScene(p) => {
-                return Err(format!("scene files not available yet ({})", p.display()));
+            SimCommand::SaveScene(p) => {
+                let text = self.world.to_scene_toml().map_err(|e| e.to_string())?;
+                crate::scene_store::write(&p, &text)?;
             }
+            SimCommand::LoadScene(p) => self.load_scene(&p)?,
         }
         Ok(None)
     }
 
-    fn add(&mut self, spec: ObjectSpec) -> ObjectId {
-        let id = self.next_id;
-        self.next_id += 1;
-        let fracture = stand_in_fracture(&spec);
-        self.objects.insert(
-            id,
-            Object {
-                spec,
-                build: 0,
-                fracture,
-            },
-        );
-        id
+    /// Replace the world with a scene file's; on error the current scene stays.
+    pub fn load_scene(&mut self, path: &Path) -> Result<(), String> {
+        let scene = if cfg!(target_arch = "wasm32") {
+            let text = crate::scene_store::read(path)?;
+            Scene::parse(&text).map_err(|e| format!("{}: {e}", path.display()))?
+        } else {
+            // From the file, so mesh paths resolve relative to the scene's folder.
+            Scene::load(path).map_err(|e| e.to_string())?
+        };
+        let world = scene
+            .build(self.bond_model.map(to_sim_bond_model))
+            .map_err(|e| e.to_string())?;
+        self.world = world;
+        self.accumulator = 0.0;
+        self.new_build();
+        Ok(())
     }
 
-    /// Advance by `dt` seconds of wall-clock time (fixed steps inside).
-    pub fn advance(&mut self, dt: f64) {
-        if self.running && !self.paused {
-            self.time += dt;
+    fn new_build(&mut self) {
+        self.build = self.build.wrapping_add(1);
+    }
+
+    /// Advance by `dt` seconds of wall-clock time in the world's fixed steps (at most
+    /// [`MAX_STEPS_PER_FRAME`] of them). Returns messages about bodies removed (diverged or
+    /// expired) for the status line.
+    pub fn advance(&mut self, dt: f64) -> Vec<String> {
+        if self.world.run_state() != RunState::Running {
+            self.accumulator = 0.0;
+            return Vec::new();
         }
+        let step = f64::from(self.world.settings().dt);
+        self.accumulator += dt.clamp(0.0, 0.25);
+        let mut steps = 0;
+        while self.accumulator + 1e-6 >= step && steps < MAX_STEPS_PER_FRAME {
+            if !self.world.step() {
+                break;
+            }
+            self.accumulator -= step;
+            steps += 1;
+            let ms = self.world.stats().last_step_ms;
+            self.step_ms = if self.step_ms == 0.0 {
+                ms
+            } else {
+                0.9 * self.step_ms + 0.1 * ms
+            };
+        }
+        if steps == MAX_STEPS_PER_FRAME {
+            self.accumulator = self.accumulator.min(step);
+        }
+        self.world
+            .take_events()
+            .into_iter()
+            .filter_map(|e| match e {
+                SimEvent::Diverged { object, reason } => Some(match object {
+                    Some(o) => format!("object {o}: a body diverged and was removed ({reason})"),
+                    None => format!("a projectile diverged and was removed ({reason})"),
+                }),
+                SimEvent::Expired(_) => None,
+            })
+            .collect()
+    }
+
+    /// Exactly one fixed step if running (tests and scripted sessions).
+    pub fn step_once(&mut self) -> bool {
+        self.world.step()
     }
 
     /// Every drawable piece and its pose.
     pub fn poses(&self) -> Vec<PiecePose> {
         let mut out = Vec::new();
-        for (&id, o) in &self.objects {
-            for f in 0..o.fracture.fragments.len() {
+        for id in self.world.object_ids() {
+            for (f, pose) in self.world.fragment_poses(id) {
                 out.push(PiecePose {
                     key: PieceKey {
-                        object: id,
-                        build: o.build,
-                        fragment: f as u32,
+                        object: u64::from(id.0),
+                        build: self.build,
+                        fragment: f,
                     },
-                    translation: to_bevy(o.spec.position.as_vec3()),
-                    rotation: Quat::IDENTITY,
+                    translation: to_bevy(pose.translation),
+                    rotation: quat_to_bevy(pose.rotation),
                 });
             }
+        }
+        for p in self.world.projectiles() {
+            out.push(PiecePose {
+                key: PieceKey {
+                    object: PROJECTILE_BIT | p.index as u64,
+                    build: self.build,
+                    fragment: 0,
+                },
+                translation: to_bevy(p.pose.translation),
+                rotation: quat_to_bevy(p.pose.rotation),
+            });
         }
         out
     }
 
-    /// Geometry and colour of a piece, to build its mesh once.
-    pub fn piece_geometry(&self, key: PieceKey) -> Option<(&Fragment, [f32; 3])> {
-        let o = self.objects.get(&key.object)?;
-        if o.build != key.build {
+    /// The flat-shaded mesh of a piece, in the frame its [`PiecePose`] maps to the world.
+    pub fn piece_mesh(&self, key: PieceKey) -> Option<FlatMesh> {
+        if key.build != self.build {
             return None;
         }
-        Some((
-            o.fracture.fragments.get(key.fragment as usize)?,
-            o.spec.color,
-        ))
+        if key.object & PROJECTILE_BIT != 0 {
+            let index = (key.object & !PROJECTILE_BIT) as usize;
+            let views = self.world.projectiles();
+            let view = views.iter().find(|v| v.index == index)?;
+            return Some(projectile_mesh(&view.spec.shape, view.spec.size, view.spec.color));
+        }
+        let id = shatter_sim::ObjectId(u32::try_from(key.object).ok()?);
+        let fracture = self.world.object_fracture(id)?;
+        let color = self.world.object_color(id)?;
+        let fragment = fracture.fragments.get(key.fragment as usize)?;
+        Some(flat_mesh(fragment, color))
     }
 
-    /// The specification an object was built from (for Edit).
-    pub fn object_spec(&self, id: ObjectId) -> Option<&ObjectSpec> {
-        self.objects.get(&id).map(|o| &o.spec)
+    /// The specification of object `id` as the panels show it (for Edit).
+    pub fn object_spec(&self, id: ObjectId) -> Option<ObjectSpec> {
+        let spec = self.world.object_spec(sim_id(id).ok()?)?;
+        Some(from_sim_spec(spec))
     }
 
     /// The object and point hit first by a ray (`dir` need not be unit).
     pub fn ray_cast(&self, origin: glam::Vec3, dir: glam::Vec3) -> Option<(ObjectId, glam::Vec3)> {
-        let (origin, dir) = (to_bevy(origin), to_bevy(dir));
-        let mut best: Option<(f32, ObjectId)> = None;
-        for (&id, o) in &self.objects {
-            let half = to_bevy((o.spec.scale * 0.5).as_vec3());
-            let c = to_bevy(o.spec.position.as_vec3());
-            if let Some(t) = ray_box(origin, dir, c - half, c + half)
-                && best.is_none_or(|(bt, _)| t < bt)
-            {
-                best = Some((t, id));
-            }
-        }
-        best.map(|(t, id)| (id, to_sim(origin + dir * t)))
+        self.world
+            .ray_cast(origin, dir)
+            .map(|(id, p)| (u64::from(id.0), p))
     }
 
     /// Overlay numbers.
     pub fn stats(&self) -> SimStats {
-        let fragments = self
-            .objects
-            .values()
-            .map(|o| o.fracture.fragments.len())
-            .sum();
+        let s = self.world.stats();
+        let state = self.world.run_state();
         SimStats {
-            bodies: self.objects.len(),
-            fragments,
-            bonds_total: self.objects.values().map(|o| o.fracture.bonds.len()).sum(),
-            bonds_broken: 0,
-            step_ms: 0.0,
-            time: self.time,
-            running: self.running && !self.paused,
-            paused: self.paused,
+            bodies: s.bodies,
+            fragments: s.fragments,
+            bonds_total: s.bonds_total,
+            bonds_broken: s.bonds_broken,
+            step_ms: self.step_ms,
+            time: s.time,
+            running: state == RunState::Running,
+            paused: state == RunState::Paused,
         }
     }
 }
 
-/// Whether a custom mesh file can be read (for the forms' validation).
+fn sim_id(id: ObjectId) -> Result<shatter_sim::ObjectId, String> {
+    u32::try_from(id)
+        .map(shatter_sim::ObjectId)
+        .map_err(|_| format!("no object {id}"))
+}
+
+/// A projectile's mesh, matching its collider (see [`shatter_sim::ProjectileShape`]):
+/// the shape's axis is `+y`, which the simulation turns along the flight direction.
+pub fn projectile_mesh(shape: &ProjectileShape, size: f32, color: [f32; 3]) -> FlatMesh {
+    use shatter_geom::TriMesh;
+    let s = f64::from(size);
+    let mesh: TriMesh = match shape {
+        ProjectileShape::Cube => shatter_geom::shapes::cube().transformed(
+            glam::DVec3::splat(s),
+            glam::DVec3::ZERO,
+        ),
+        ProjectileShape::Sphere => shatter_geom::shapes::sphere(16, 10)
+            .transformed(glam::DVec3::splat(s), glam::DVec3::ZERO),
+        // Unity's capsule and cylinder are 2 tall and 1 wide.
+        ProjectileShape::Capsule => shatter_geom::shapes::capsule().transformed(
+            glam::DVec3::new(s / 2.0, s / 2.0, s / 2.0),
+            glam::DVec3::ZERO,
+        ),
+        ProjectileShape::Cylinder => shatter_geom::shapes::cylinder()
+            .transformed(glam::DVec3::new(s, s / 2.0, s), glam::DVec3::ZERO),
+        ProjectileShape::Custom(points) => {
+            // The collider is the points' convex hull: draw the same hull.
+            let scaled: Vec<glam::DVec3> = points.iter().map(|p| *p * s).collect();
+            match shatter_geom::delaunay::tetrahedralize(&scaled) {
+                Ok(t) => TriMesh::new(scaled, t.hull_faces()),
+                Err(_) => shatter_geom::shapes::sphere(12, 8)
+                    .transformed(glam::DVec3::splat(s), glam::DVec3::ZERO),
+            }
+        }
+    };
+    flat_trimesh(&mesh, &[], color)
+}
+
+/// Whether a custom mesh file can be used (for the forms' validation): the extension is a
+/// mesh format, and the file reads as a mesh.
 pub fn check_custom_mesh(path: &Path) -> Result<(), String> {
     let ext = path
         .extension()
@@ -274,92 +426,27 @@ pub fn check_custom_mesh(path: &Path) -> Result<(), String> {
             ));
         }
     }
-    std::fs::metadata(path)
-        .map_err(|e| format!("cannot read '{}': {e}", path.display()))
-        .and_then(|m| {
-            if m.is_file() {
-                Ok(())
-            } else {
-                Err(format!("'{}' is not a file", path.display()))
-            }
+    let meta =
+        std::fs::metadata(path).map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
+    if !meta.is_file() {
+        return Err(format!("'{}' is not a file", path.display()));
+    }
+    let mesh = shatter_geom::io::load_mesh(path).map_err(|e| e.to_string())?;
+    if mesh.triangles.is_empty() {
+        return Err(format!("'{}' has no triangles", path.display()));
+    }
+    Ok(())
+}
+
+/// The scene objects' ids in order (for scripted sessions).
+pub fn object_ids(bridge: &SimBridge) -> BTreeMap<ObjectId, String> {
+    bridge
+        .world
+        .object_ids()
+        .into_iter()
+        .filter_map(|id| {
+            let spec = bridge.world.object_spec(id)?;
+            Some((u64::from(id.0), spec.name.clone()))
         })
-}
-
-fn ray_box(o: Vec3, d: Vec3, lo: Vec3, hi: Vec3) -> Option<f32> {
-    let inv = d.recip();
-    let t0 = (lo - o) * inv;
-    let t1 = (hi - o) * inv;
-    let tmin = t0.min(t1).max_element().max(0.0);
-    let tmax = t0.max(t1).min_element();
-    (tmin <= tmax).then_some(tmin)
-}
-
-/// STAND-IN fracture: the scaled unit box cut into a grid.
-fn stand_in_fracture(spec: &ObjectSpec) -> Fracture {
-    let n = [4u32, 3, 1];
-    let size = spec.scale;
-    let mut fragments = Vec::new();
-    for i in 0..n[0] {
-        for j in 0..n[1] {
-            for k in 0..n[2] {
-                let cell = DVec3::new(i as f64, j as f64, k as f64);
-                let cnt = DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64);
-                let lo = size * (cell / cnt - 0.5);
-                let hi = size * ((cell + 1.0) / cnt - 0.5);
-                let on = [
-                    i == 0,
-                    i + 1 == n[0],
-                    j == 0,
-                    j + 1 == n[1],
-                    k == 0,
-                    k + 1 == n[2],
-                ];
-                fragments.push(box_fragment(lo, hi, on));
-            }
-        }
-    }
-    Fracture {
-        fragments,
-        bonds: Vec::new(),
-    }
-}
-
-fn box_fragment(lo: DVec3, hi: DVec3, on_boundary: [bool; 6]) -> Fragment {
-    let p = |x: bool, y: bool, z: bool| {
-        DVec3::new(
-            if x { hi.x } else { lo.x },
-            if y { hi.y } else { lo.y },
-            if z { hi.z } else { lo.z },
-        )
-    };
-    let positions: Vec<DVec3> = (0..8)
-        .map(|i| p(i & 1 != 0, i & 2 != 0, i & 4 != 0))
-        .collect();
-    // Faces -x, +x, -y, +y, -z, +z as two outward triangles each.
-    let quads: [[u32; 4]; 6] = [
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-    ];
-    let mut triangles = Vec::new();
-    let mut interior = Vec::new();
-    for (f, q) in quads.iter().enumerate() {
-        triangles.push([q[0], q[1], q[2]]);
-        triangles.push([q[0], q[2], q[3]]);
-        interior.extend([!on_boundary[f]; 2]);
-    }
-    let mesh = TriMesh::new(positions, triangles);
-    let volume = mesh.signed_volume();
-    let centroid = mesh.centroid();
-    Fragment {
-        mesh,
-        interior,
-        convex_pieces: Vec::new(),
-        volume,
-        centroid,
-        inertia: DMat3::IDENTITY,
-    }
+        .collect()
 }

@@ -25,21 +25,24 @@ pub fn apply_commands(
     mut ui_state: ResMut<UiState>,
 ) {
     for cmd in pending.0.drain(..) {
-        let what = format!("{cmd:?}");
+        let what = cmd.clone();
         match bridge.apply(cmd) {
             Ok(Some(id)) => ui_state.object_added(id),
             Ok(None) => {}
             Err(e) => {
                 warn!(
                     "command failed: {e} ({})",
-                    what.chars().take(60).collect::<String>()
+                    format!("{what:?}").chars().take(60).collect::<String>()
                 );
-                ui_state.status = e;
+                ui_state.command_failed(&what, e);
             }
         }
     }
 }
 
-fn advance(mut bridge: ResMut<SimBridge>, time: Res<Time>) {
-    bridge.advance(time.delta_secs_f64());
+fn advance(mut bridge: ResMut<SimBridge>, time: Res<Time>, mut ui_state: ResMut<UiState>) {
+    if let Some(last) = bridge.advance(time.delta_secs_f64()).pop() {
+        warn!("{last}");
+        ui_state.status = last;
+    }
 }

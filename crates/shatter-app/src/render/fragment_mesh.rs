@@ -6,6 +6,7 @@
 
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Mesh, PrimitiveTopology};
+use shatter_geom::TriMesh;
 use shatter_geom::fracture::Fragment;
 
 /// How much darker interior (cut) faces are than the surface.
@@ -33,7 +34,12 @@ pub fn interior_color(surface: [f32; 3]) -> [f32; 3] {
 ///
 /// Degenerate triangles (zero area) get the normal of +Y rather than NaN.
 pub fn flat_mesh(fragment: &Fragment, color: [f32; 3]) -> FlatMesh {
-    let mesh = &fragment.mesh;
+    flat_trimesh(&fragment.mesh, &fragment.interior, color)
+}
+
+/// Flat-shaded triangles of any mesh; `interior[t]` marks the triangles drawn in the
+/// interior shade (missing entries are surface).
+pub fn flat_trimesh(mesh: &TriMesh, interior: &[bool], color: [f32; 3]) -> FlatMesh {
     let n = mesh.triangles.len() * 3;
     let mut out = FlatMesh {
         positions: Vec::with_capacity(n),
@@ -41,15 +47,15 @@ pub fn flat_mesh(fragment: &Fragment, color: [f32; 3]) -> FlatMesh {
         colors: Vec::with_capacity(n),
     };
     let surface = color;
-    let interior = interior_color(color);
+    let inner = interior_color(color);
     for t in 0..mesh.triangles.len() {
         let [a, b, c] = mesh.triangle(t);
         let normal = (b - a)
             .cross(c - a)
             .try_normalize()
             .unwrap_or(glam::DVec3::Y);
-        let is_interior = fragment.interior.get(t).copied().unwrap_or(false);
-        let col = if is_interior { interior } else { surface };
+        let is_interior = interior.get(t).copied().unwrap_or(false);
+        let col = if is_interior { inner } else { surface };
         for p in [a, b, c] {
             out.positions.push(p.as_vec3().to_array());
             out.normals.push(normal.as_vec3().to_array());
@@ -74,7 +80,6 @@ pub fn to_bevy_mesh(flat: FlatMesh) -> Mesh {
 mod tests {
     use super::*;
     use glam::{DMat3, DVec3};
-    use shatter_geom::TriMesh;
 
     fn tetra(interior_face: usize) -> Fragment {
         let mesh = TriMesh::new(

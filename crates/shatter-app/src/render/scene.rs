@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use bevy::light::CascadeShadowConfigBuilder;
 use bevy::prelude::*;
 
-use crate::render::fragment_mesh::{flat_mesh, to_bevy_mesh};
+use crate::render::fragment_mesh::to_bevy_mesh;
 use crate::sim_bridge::{PieceKey, SimBridge};
 
 /// Draws the simulation: sun with shadows, ground, flat-shaded fragments.
@@ -116,10 +116,10 @@ fn sync_pieces(
             }
             continue;
         }
-        let Some((fragment, color)) = bridge.piece_geometry(pose.key) else {
+        let Some(flat) = bridge.piece_mesh(pose.key) else {
             continue;
         };
-        let mesh = meshes.add(to_bevy_mesh(flat_mesh(fragment, color)));
+        let mesh = meshes.add(to_bevy_mesh(flat));
         let material = pieces.material.clone();
         let e = commands
             .spawn((

@@ -17,10 +17,15 @@ pub fn parse_count(text: &str) -> Result<u32, String> {
     if t.is_empty() {
         return Err("required: a whole number".to_owned());
     }
-    match t.parse::<u32>() {
-        Ok(v) => Ok(v),
-        Err(_) if t.parse::<f64>().is_ok() => Err(format!("'{t}' is not an integer")),
-        Err(_) if t.starts_with('-') => Err(format!("'{t}' is negative")),
+    if let Ok(v) = t.parse::<u32>() {
+        return Ok(v);
+    }
+    match t.parse::<f64>() {
+        Ok(v) if v < 0.0 => Err(format!("'{t}' is negative")),
+        Ok(v) if v.fract() == 0.0 && v.is_finite() => {
+            Err(format!("'{t}' is too large (at most {})", u32::MAX))
+        }
+        Ok(_) => Err(format!("'{t}' is not an integer")),
         Err(_) => Err(format!("'{t}' is not a whole number")),
     }
 }
@@ -111,6 +116,8 @@ mod tests {
         assert_eq!(parse_count("12"), Ok(12));
         assert!(parse_count("1.5").unwrap_err().contains("not an integer"));
         assert!(parse_count("-3").unwrap_err().contains("negative"));
+        assert!(parse_count("-1.5").unwrap_err().contains("negative"));
+        assert!(parse_count("5000000000").unwrap_err().contains("too large"));
         assert!(
             parse_count("abc")
                 .unwrap_err()

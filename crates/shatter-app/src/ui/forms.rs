@@ -57,13 +57,25 @@ pub enum ShapeKind {
     Cylinder,
     /// Sphere.
     Sphere,
+    /// Torus.
+    Torus,
+    /// The thesis's bird.
+    Bird,
     /// A file given in the path field.
     Custom,
 }
 
 impl ShapeKind {
     /// The shapes of the thesis's Add Object panel.
-    pub const OBJECT: [ShapeKind; 4] = [Self::Cube, Self::Capsule, Self::Cylinder, Self::Custom];
+    pub const OBJECT: [ShapeKind; 7] = [
+        Self::Cube,
+        Self::Capsule,
+        Self::Cylinder,
+        Self::Sphere,
+        Self::Torus,
+        Self::Bird,
+        Self::Custom,
+    ];
     /// The shapes of the Fire panel.
     pub const PROJECTILE: [ShapeKind; 5] = [
         Self::Sphere,
@@ -80,6 +92,8 @@ impl ShapeKind {
             Self::Capsule => "Capsule",
             Self::Cylinder => "Cylinder",
             Self::Sphere => "Sphere",
+            Self::Torus => "Torus",
+            Self::Bird => "Bird",
             Self::Custom => "Custom",
         }
     }
@@ -91,6 +105,8 @@ impl ShapeKind {
             ShapeChoice::Capsule => Self::Capsule,
             ShapeChoice::Cylinder => Self::Cylinder,
             ShapeChoice::Sphere => Self::Sphere,
+            ShapeChoice::Torus => Self::Torus,
+            ShapeChoice::Bird => Self::Bird,
             ShapeChoice::Custom(_) => Self::Custom,
         }
     }
@@ -102,6 +118,8 @@ fn shape_choice(kind: ShapeKind, path: &str, check: MeshCheck<'_>) -> Result<Sha
         ShapeKind::Capsule => ShapeChoice::Capsule,
         ShapeKind::Cylinder => ShapeChoice::Cylinder,
         ShapeKind::Sphere => ShapeChoice::Sphere,
+        ShapeKind::Torus => ShapeChoice::Torus,
+        ShapeKind::Bird => ShapeChoice::Bird,
         ShapeKind::Custom => {
             let p = path.trim();
             if p.is_empty() {
@@ -146,7 +164,8 @@ impl Default for AddObjectForm {
             shape: ShapeKind::Cube,
             custom_path: String::new(),
             random_vertices: "40".to_owned(),
-            break_force: "200".to_owned(),
+            // Stone's bond strength: a 1 m stone cube (2.6 t) holds together when it lands.
+            break_force: "20000".to_owned(),
             skip: "0".to_owned(),
             center: false,
             last: String::new(),
@@ -405,13 +424,9 @@ impl SceneFileForm {
     /// The Save command, if the path can be written to.
     pub fn save(&self) -> Result<SimCommand, FieldErrors> {
         let path = self.toml_path()?;
-        let dir = match path.parent() {
-            Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-            _ => PathBuf::from("."),
-        };
-        if !dir.is_dir() {
+        if let Err(msg) = crate::scene_store::can_save(&path) {
             let mut e = FieldErrors::default();
-            e.0.insert("path", format!("folder '{}' does not exist", dir.display()));
+            e.0.insert("path", msg);
             return Err(e);
         }
         Ok(SimCommand::SaveScene(path))
@@ -420,7 +435,7 @@ impl SceneFileForm {
     /// The Load command, if the file exists.
     pub fn load(&self) -> Result<SimCommand, FieldErrors> {
         let path = self.toml_path()?;
-        if !path.is_file() {
+        if !crate::scene_store::exists(&path) {
             let mut e = FieldErrors::default();
             e.0.insert("path", format!("no file '{}'", path.display()));
             return Err(e);

@@ -78,17 +78,17 @@ fn overlay(ui: &mut Ui, stats: &SimStats, fps: f64) {
 
 fn scene_controls(ui: &mut Ui, s: &mut UiState, stats: &SimStats, out: &mut Vec<SimCommand>) {
     ui.horizontal(|ui| {
-        if ui.button("Start").clicked() {
+        if ui.button("Start").on_hover_text("Enter").clicked() {
             out.push(SimCommand::Start);
         }
-        if ui.button("Reset").clicked() {
+        if ui.button("Reset").on_hover_text("R").clicked() {
             out.push(SimCommand::Reset);
         }
         if ui.button("Clean").clicked() {
             out.push(SimCommand::Clean);
         }
         let pause = if stats.paused { "Resume" } else { "Pause" };
-        if ui.button(pause).clicked() {
+        if ui.button(pause).on_hover_text("P").clicked() {
             out.push(SimCommand::TogglePause);
         }
     });
@@ -175,6 +175,7 @@ fn add_object_panel(ui: &mut Ui, s: &mut UiState, out: &mut Vec<SimCommand>) {
             let f = &mut s.add;
             shape_row(ui, &ShapeKind::OBJECT, &mut f.shape, &mut f.custom_path);
             error_line(ui, &s.add_errors, "shape");
+            error_line(ui, &s.add_errors, "object");
             ui.horizontal(|ui| {
                 egui::ComboBox::from_id_salt("method")
                     .selected_text(f.method.name())
@@ -200,10 +201,10 @@ fn add_object_panel(ui: &mut Ui, s: &mut UiState, out: &mut Vec<SimCommand>) {
                         }
                     });
             });
-            let rv = if f.method == MethodChoice::Tetra {
-                "Random Vertices"
-            } else {
-                "Pieces"
+            let rv = match f.method {
+                MethodChoice::Tetra => "Random Vertices",
+                MethodChoice::Grid => "Bricks along x",
+                MethodChoice::Voronoi | MethodChoice::Slice => "Pieces",
             };
             text_row(
                 ui,
@@ -265,6 +266,7 @@ fn add_object_panel(ui: &mut Ui, s: &mut UiState, out: &mut Vec<SimCommand>) {
                 "skip",
                 "last",
                 "color",
+                "object",
             ] {
                 error_line(ui, &s.add_errors, field);
             }

@@ -137,6 +137,19 @@ impl UiState {
         }
     }
 
+    /// The simulation refused `cmd` with `message`: show it in the status line and, for an
+    /// object that could not be built, next to the Add Object fields too (the user's
+    /// fields stay as they were, so they can be corrected).
+    pub fn command_failed(&mut self, cmd: &SimCommand, message: String) {
+        if matches!(cmd, SimCommand::AddObject(_) | SimCommand::EditObject(..)) {
+            if matches!(cmd, SimCommand::AddObject(_)) {
+                self.awaiting_new_id = false;
+            }
+            self.add_errors.0.insert("object", message.clone());
+        }
+        self.status = message;
+    }
+
     /// Open the properties of `id` (Edit mode) with its current specification.
     pub fn edit_object(&mut self, id: ObjectId, spec: &ObjectSpec) {
         let (add, transform) = AddObjectForm::from_spec(spec);

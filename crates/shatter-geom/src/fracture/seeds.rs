@@ -114,14 +114,34 @@ pub(crate) fn seeds(
                 .collect()
         }
         Pattern::Radial => {
-            let centre = impact.unwrap_or_else(|| piece.pos[rng.random_range(0..piece.pos.len())]);
+            // Default impact: the middle of the largest face of the bounds (the face of a
+            // pane, the top of a slab), where a blow usually lands.
+            let centre = impact.unwrap_or_else(|| {
+                let e = hi - lo;
+                let mid = (lo + hi) * 0.5;
+                if e.y <= e.x && e.y <= e.z {
+                    DVec3::new(mid.x, hi.y, mid.z)
+                } else if e.x <= e.z {
+                    DVec3::new(hi.x, mid.y, mid.z)
+                } else {
+                    DVec3::new(mid.x, mid.y, hi.z)
+                }
+            });
+            // The spread follows the object's extents, so thin objects (panes) keep their
+            // seeds inside instead of losing most draws above and below.
+            let extent = hi - lo;
             (0..k)
                 .map(|_| {
-                    sampler.inside_from(rng, |r| {
+                    let p = sampler.inside_from(rng, |r| {
                         // Radius ∝ u³: density falls off with distance from the impact.
                         let u: f64 = r.random();
-                        centre + unit_vector(r) * (diag * u * u * u)
-                    })
+                        centre + unit_vector(r) * extent * (u * u * u)
+                    });
+                    if sampler.contains(p) {
+                        p
+                    } else {
+                        sampler.uniform(rng)
+                    }
                 })
                 .collect()
         }

@@ -18,6 +18,8 @@ use crate::world::state::{ObjectId, World};
 /// A projectile as a renderer sees it.
 #[derive(Debug, Clone)]
 pub struct ProjectileView<'a> {
+    /// Firing order since the last reset (stable while the projectile flies).
+    pub index: usize,
     /// What was fired.
     pub spec: &'a ProjectileSpec,
     /// Current pose.
@@ -120,9 +122,11 @@ impl World {
     pub fn projectiles(&self) -> Vec<ProjectileView<'_>> {
         self.projectiles
             .iter()
-            .filter_map(|p| {
+            .enumerate()
+            .filter_map(|(index, p)| {
                 let rb = self.physics.bodies.get(p.body?)?;
                 Some(ProjectileView {
+                    index,
                     spec: &p.spec,
                     pose: *rb.position(),
                 })

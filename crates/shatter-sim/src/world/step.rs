@@ -3,7 +3,7 @@
 
 use std::collections::BTreeMap;
 use std::sync::Mutex;
-use std::time::Instant;
+use web_time::Instant;
 
 use glam::{Quat, Vec3};
 use rapier3d::prelude::*;

@@ -1,0 +1,62 @@
+//! Prints the simulation's state as one JSON line at a fixed wall-clock period, prefixed
+//! with `SHATTER_STATE `. The web page and its end-to-end test (`web/e2e.mjs`) read these
+//! lines from the browser console to know that frames are drawn and bonds broke.
+
+use bevy::prelude::*;
+use serde_json::json;
+
+use crate::sim_bridge::SimBridge;
+use crate::ui::FrameRate;
+
+/// Logs `SHATTER_STATE {json}` every `period_secs` seconds of wall-clock time.
+#[derive(Debug, Clone)]
+pub struct StateLogPlugin {
+    /// Seconds between lines.
+    pub period_secs: f32,
+}
+
+impl Default for StateLogPlugin {
+    fn default() -> Self {
+        Self { period_secs: 0.5 }
+    }
+}
+
+#[derive(Resource)]
+struct StateLogTimer(Timer);
+
+impl Plugin for StateLogPlugin {
+    fn build(&self, app: &mut App) {
+        app.insert_resource(StateLogTimer(Timer::from_seconds(
+            self.period_secs,
+            TimerMode::Repeating,
+        )))
+        .add_systems(Last, log_state);
+    }
+}
+
+/// The line for a state and a frame count.
+pub fn state_line(bridge: &SimBridge, frames: u64) -> String {
+    let s = bridge.stats();
+    let value = json!({
+        "frames": frames,
+        "bodies": s.bodies,
+        "fragments": s.fragments,
+        "bonds_total": s.bonds_total,
+        "bonds_broken": s.bonds_broken,
+        "time": s.time,
+        "running": s.running,
+        "step_ms": s.step_ms,
+    });
+    format!("SHATTER_STATE {value}")
+}
+
+fn log_state(
+    time: Res<Time<Real>>,
+    mut timer: ResMut<StateLogTimer>,
+    bridge: Res<SimBridge>,
+    rate: Res<FrameRate>,
+) {
+    if timer.0.tick(time.delta()).just_finished() {
+        info!("{}", state_line(&bridge, rate.frames));
+    }
+}

@@ -1,0 +1,329 @@
+//! The app's bridge to the simulation, without a window: the commands the panels send
+//! reach the real `shatter-sim` world and have the effects the user expects.
+#![allow(clippy::unwrap_used)]
+
+use glam::{DVec3, Vec3};
+use shatter_app::commands::{
+    BondModelChoice, MethodChoice, ObjectSpec, PatternChoice, ProjectileSpec, ShapeChoice,
+    SimCommand,
+};
+use shatter_app::sim_bridge::{PROJECTILE_BIT, SimBridge, check_custom_mesh};
+
+fn steps(b: &mut SimBridge, n: usize) {
+    for _ in 0..n {
+        assert!(b.step_once(), "the world should be running");
+    }
+}
+
+fn cube_spec(position: DVec3) -> ObjectSpec {
+    ObjectSpec {
+        shape: ShapeChoice::Cube,
+        method: MethodChoice::Voronoi,
+        pattern: PatternChoice::Uniform,
+        random_vertices: 12,
+        skip: 0,
+        center: false,
+        break_force: 500.0,
+        lifetime: None,
+        color: [0.2, 0.5, 0.8],
+        material: "stone".into(),
+        position,
+        scale: DVec3::ONE,
+    }
+}
+
+fn fire_at_wall(b: &mut SimBridge, speed: f64) {
+    b.apply(SimCommand::Fire {
+        spec: ProjectileSpec {
+            speed,
+            ..ProjectileSpec::default()
+        },
+        from: Vec3::new(0.3, 1.2, 6.0),
+        to: Vec3::new(0.3, 1.2, 0.0),
+    })
+    .unwrap();
+}
+
+#[test]
+fn default_scene_is_the_bundled_file_with_every_object() {
+    let b = SimBridge::default_scene();
+    let s = b.stats();
+    // Wall 16×10×2 bricks, bird 40 radial cells, glass pane 30 radial cells (the tiny
+    // cells at the impact point merge into neighbours), crate 4×4×4.
+    let ids = b.world().object_ids();
+    assert_eq!(ids.len(), 4);
+    let count = |i: usize| b.world().object_fracture(ids[i]).unwrap().fragments.len();
+    assert_eq!(count(0), 320);
+    assert!((20..=40).contains(&count(1)), "bird: {}", count(1));
+    assert!((15..=30).contains(&count(2)), "pane: {}", count(2));
+    assert_eq!(count(3), 64);
+    assert_eq!(s.fragments, (0..4).map(count).sum::<usize>());
+    assert!(s.bonds_total > 1000, "{s:?}");
+    assert_eq!(s.bonds_broken, 0);
+    assert!(!s.running);
+    // Every piece has a mesh.
+    let poses = b.poses();
+    assert_eq!(poses.len(), s.fragments);
+    for p in poses.iter().step_by(37) {
+        let mesh = b.piece_mesh(p.key).unwrap();
+        assert!(!mesh.positions.is_empty());
+        assert_eq!(mesh.positions.len() % 3, 0);
+        assert_eq!(mesh.positions.len(), mesh.colors.len());
+    }
+}
+
+#[test]
+fn a_fast_shot_breaks_the_wall_and_a_slow_one_does_not() {
+    let mut slow = SimBridge::default_scene();
+    slow.apply(SimCommand::Start).unwrap();
+    steps(&mut slow, 10);
+    fire_at_wall(&mut slow, 2.0);
+    steps(&mut slow, 120);
+    assert_eq!(slow.stats().bonds_broken, 0, "{:?}", slow.stats());
+
+    let mut fast = SimBridge::default_scene();
+    fast.apply(SimCommand::Start).unwrap();
+    steps(&mut fast, 10);
+    fire_at_wall(&mut fast, 40.0);
+    // The projectile is drawn.
+    assert!(fast.poses().iter().any(|p| p.key.object & PROJECTILE_BIT != 0));
+    steps(&mut fast, 30);
+    let s = fast.stats();
+    assert!(s.bonds_broken > 0, "{s:?}");
+    assert!(s.bodies > 5, "the wall split into several bodies: {s:?}");
+}
+
+#[test]
+fn reset_puts_everything_back_and_replaces_the_meshes() {
+    let mut b = SimBridge::default_scene();
+    let initial: Vec<_> = b.poses().iter().map(|p| (p.translation, p.rotation)).collect();
+    let key = b.poses()[0].key;
+    b.apply(SimCommand::Start).unwrap();
+    fire_at_wall(&mut b, 40.0);
+    steps(&mut b, 40);
+    assert!(b.stats().bonds_broken > 0);
+    b.apply(SimCommand::Reset).unwrap();
+    let s = b.stats();
+    assert_eq!(s.bonds_broken, 0);
+    assert_eq!(s.time, 0.0);
+    assert!(!s.running);
+    let after: Vec<_> = b.poses().iter().map(|p| (p.translation, p.rotation)).collect();
+    assert_eq!(initial, after, "reset restores every fragment exactly");
+    // Meshes of the old build are stale (projectile keys are reused after a reset).
+    assert!(b.piece_mesh(key).is_none());
+    assert!(b.piece_mesh(b.poses()[0].key).is_some());
+}
+
+#[test]
+fn pause_holds_time_and_resume_continues() {
+    let mut b = SimBridge::default_scene();
+    b.apply(SimCommand::Start).unwrap();
+    steps(&mut b, 5);
+    b.apply(SimCommand::TogglePause).unwrap();
+    assert!(b.stats().paused);
+    let t = b.stats().time;
+    assert!(!b.step_once());
+    b.advance(1.0);
+    assert_eq!(b.stats().time, t);
+    b.apply(SimCommand::TogglePause).unwrap();
+    b.advance(1.0 / 30.0);
+    assert!(b.stats().time > t);
+}
+
+#[test]
+fn advance_runs_fixed_steps_and_never_more_than_the_cap_per_frame() {
+    let mut b = SimBridge::default_scene();
+    b.apply(SimCommand::Start).unwrap();
+    b.advance(0.05);
+    // 1/60 s steps: three fit in 0.05 s.
+    assert_eq!(b.world().stats().steps, 3);
+    b.advance(10.0);
+    assert_eq!(
+        b.world().stats().steps,
+        3 + shatter_app::sim_bridge::MAX_STEPS_PER_FRAME as u64
+    );
+}
+
+#[test]
+fn add_edit_delete_and_clean_change_the_world() {
+    let mut b = SimBridge::default_scene();
+    let before = b.stats().fragments;
+    let id = b
+        .apply(SimCommand::AddObject(cube_spec(DVec3::new(5.0, 0.5, 0.0))))
+        .unwrap()
+        .unwrap();
+    let added = b.stats().fragments - before;
+    assert!(added >= 12, "12 Voronoi cells: {added}");
+    let spec = b.object_spec(id).unwrap();
+    assert_eq!(spec.random_vertices, 12);
+    assert_eq!(spec.position, DVec3::new(5.0, 0.5, 0.0));
+    assert_eq!(spec.material, "stone");
+
+    // Edit: 30 tetra random points instead.
+    let edited = ObjectSpec {
+        method: MethodChoice::Tetra,
+        random_vertices: 30,
+        ..spec
+    };
+    b.apply(SimCommand::EditObject(id, edited)).unwrap();
+    assert_eq!(b.object_spec(id).unwrap().method, MethodChoice::Tetra);
+    assert_ne!(b.stats().fragments - before, added);
+
+    b.apply(SimCommand::DeleteObject(id)).unwrap();
+    assert_eq!(b.stats().fragments, before);
+    assert!(b.apply(SimCommand::DeleteObject(id)).is_err());
+
+    b.apply(SimCommand::Clean).unwrap();
+    assert_eq!(b.stats().fragments, 0);
+    assert!(b.poses().is_empty());
+}
+
+#[test]
+fn editing_a_scene_object_keeps_what_the_panels_do_not_show() {
+    let mut b = SimBridge::default_scene();
+    // Object 0 is the anchored brick wall.
+    let wall = b.object_spec(0).unwrap();
+    assert_eq!(wall.method, MethodChoice::Grid);
+    assert_eq!(wall.random_vertices, 16);
+    let bricks = b.stats().fragments;
+    b.apply(SimCommand::EditObject(
+        0,
+        ObjectSpec {
+            color: [1.0, 0.0, 0.0],
+            ..wall
+        },
+    ))
+    .unwrap();
+    assert_eq!(b.stats().fragments, bricks, "same grid");
+    let sim = b.world().object_spec(shatter_sim::ObjectId(0)).unwrap();
+    assert!(sim.anchored, "still anchored");
+    assert_eq!(sim.color, [1.0, 0.0, 0.0]);
+}
+
+#[test]
+fn a_refused_object_changes_nothing_and_says_why() {
+    let mut b = SimBridge::default_scene();
+    let before = b.stats();
+    // A grid only cuts boxes.
+    let err = b
+        .apply(SimCommand::AddObject(ObjectSpec {
+            shape: ShapeChoice::Bird,
+            method: MethodChoice::Grid,
+            ..cube_spec(DVec3::ZERO)
+        }))
+        .unwrap_err();
+    assert!(!err.is_empty());
+    assert_eq!(b.stats(), before);
+    // An explosion with a negative radius is refused.
+    assert!(
+        b.apply(SimCommand::Explode {
+            position: Vec3::ZERO,
+            radius: -1.0,
+            power: 10.0
+        })
+        .unwrap_err()
+        .contains("radius")
+    );
+}
+
+#[test]
+fn an_explosion_breaks_bonds_near_it() {
+    let mut b = SimBridge::default_scene();
+    b.apply(SimCommand::Start).unwrap();
+    steps(&mut b, 5);
+    // Next to the glass pane at (3, 0.02, 2).
+    b.apply(SimCommand::Explode {
+        position: Vec3::new(3.0, 0.3, 2.0),
+        radius: 2.0,
+        power: 800.0,
+    })
+    .unwrap();
+    steps(&mut b, 10);
+    assert!(b.stats().bonds_broken > 0, "{:?}", b.stats());
+}
+
+#[test]
+fn bond_model_choice_applies_to_new_objects() {
+    let mut b = SimBridge::default_scene();
+    b.apply(SimCommand::SetBondModel(BondModelChoice::Joints))
+        .unwrap();
+    let id = b
+        .apply(SimCommand::AddObject(cube_spec(DVec3::new(5.0, 0.5, 0.0))))
+        .unwrap()
+        .unwrap();
+    let model = b
+        .world()
+        .object_bond_model(shatter_sim::ObjectId(id as u32))
+        .unwrap();
+    assert_eq!(model, shatter_sim::BondModel::Joints);
+}
+
+#[test]
+fn save_and_load_round_trip_and_a_bad_file_keeps_the_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("scene.toml");
+    let mut b = SimBridge::default_scene();
+    b.apply(SimCommand::AddObject(cube_spec(DVec3::new(5.0, 0.5, 0.0))))
+        .unwrap();
+    let stats = b.stats();
+    b.apply(SimCommand::SaveScene(path.clone())).unwrap();
+
+    let mut other = SimBridge::default();
+    other.apply(SimCommand::LoadScene(path)).unwrap();
+    assert_eq!(other.world().object_ids().len(), 5);
+    assert_eq!(other.stats().fragments, stats.fragments);
+    assert_eq!(other.stats().bonds_total, stats.bonds_total);
+
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(&bad, "[world]\ngravty = 1\n").unwrap();
+    let err = other.apply(SimCommand::LoadScene(bad)).unwrap_err();
+    assert!(err.contains("gravty"), "{err}");
+    assert_eq!(other.world().object_ids().len(), 5, "the scene stayed");
+}
+
+#[test]
+fn custom_projectile_and_custom_mesh_checks() {
+    let dir = tempfile::tempdir().unwrap();
+    let good = dir.path().join("rock.obj");
+    std::fs::write(
+        &good,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+    )
+    .unwrap();
+    assert!(check_custom_mesh(&good).is_ok());
+    let broken = dir.path().join("broken.obj");
+    std::fs::write(&broken, "v 0 0 0\nf 1 2 3\n").unwrap();
+    assert!(check_custom_mesh(&broken).is_err(), "a face with missing vertices");
+    assert!(check_custom_mesh(&dir.path().join("none.stl")).is_err());
+
+    let mut b = SimBridge::default_scene();
+    b.apply(SimCommand::Start).unwrap();
+    b.apply(SimCommand::Fire {
+        spec: ProjectileSpec {
+            shape: ShapeChoice::Custom(good),
+            ..ProjectileSpec::default()
+        },
+        from: Vec3::new(8.0, 3.0, 8.0),
+        to: Vec3::new(8.0, 3.0, 0.0),
+    })
+    .unwrap();
+    let key = b
+        .poses()
+        .into_iter()
+        .find(|p| p.key.object & PROJECTILE_BIT != 0)
+        .unwrap()
+        .key;
+    // The drawn hull of the tetrahedron: 4 triangles.
+    assert_eq!(b.piece_mesh(key).unwrap().positions.len(), 12);
+    let err = b
+        .apply(SimCommand::Fire {
+            spec: ProjectileSpec {
+                shape: ShapeChoice::Custom(broken),
+                ..ProjectileSpec::default()
+            },
+            from: Vec3::ZERO,
+            to: Vec3::X,
+        })
+        .unwrap_err();
+    assert!(err.contains("projectile"), "{err}");
+}
