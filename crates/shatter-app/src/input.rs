@@ -6,8 +6,8 @@ use bevy::window::PrimaryWindow;
 use bevy_egui::input::EguiWantsInput;
 
 use crate::camera::OrbitCamera;
-use crate::sim_bridge::{SimBridge, to_sim};
 use crate::commands::SimCommand;
+use crate::sim_bridge::{SimBridge, to_sim};
 use crate::ui::{ClickOutcome, PendingCommands, UiState};
 
 /// A click to perform as if the user had made it (used by the autotest), in window

@@ -16,6 +16,8 @@
 //!     .run();
 //! ```
 
+#![cfg_attr(test, allow(clippy::unwrap_used))]
+
 pub mod autotest;
 pub mod camera;
 pub mod commands;

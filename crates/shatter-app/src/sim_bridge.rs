@@ -333,7 +333,11 @@ impl SimBridge {
             let index = (key.object & !PROJECTILE_BIT) as usize;
             let views = self.world.projectiles();
             let view = views.iter().find(|v| v.index == index)?;
-            return Some(projectile_mesh(&view.spec.shape, view.spec.size, view.spec.color));
+            return Some(projectile_mesh(
+                &view.spec.shape,
+                view.spec.size,
+                view.spec.color,
+            ));
         }
         let id = shatter_sim::ObjectId(u32::try_from(key.object).ok()?);
         let fracture = self.world.object_fracture(id)?;
@@ -384,10 +388,9 @@ pub fn projectile_mesh(shape: &ProjectileShape, size: f32, color: [f32; 3]) -> F
     use shatter_geom::TriMesh;
     let s = f64::from(size);
     let mesh: TriMesh = match shape {
-        ProjectileShape::Cube => shatter_geom::shapes::cube().transformed(
-            glam::DVec3::splat(s),
-            glam::DVec3::ZERO,
-        ),
+        ProjectileShape::Cube => {
+            shatter_geom::shapes::cube().transformed(glam::DVec3::splat(s), glam::DVec3::ZERO)
+        }
         ProjectileShape::Sphere => shatter_geom::shapes::sphere(16, 10)
             .transformed(glam::DVec3::splat(s), glam::DVec3::ZERO),
         // Unity's capsule and cylinder are 2 tall and 1 wide.

@@ -86,7 +86,11 @@ fn a_fast_shot_breaks_the_wall_and_a_slow_one_does_not() {
     steps(&mut fast, 10);
     fire_at_wall(&mut fast, 40.0);
     // The projectile is drawn.
-    assert!(fast.poses().iter().any(|p| p.key.object & PROJECTILE_BIT != 0));
+    assert!(
+        fast.poses()
+            .iter()
+            .any(|p| p.key.object & PROJECTILE_BIT != 0)
+    );
     steps(&mut fast, 30);
     let s = fast.stats();
     assert!(s.bonds_broken > 0, "{s:?}");
@@ -96,7 +100,11 @@ fn a_fast_shot_breaks_the_wall_and_a_slow_one_does_not() {
 #[test]
 fn reset_puts_everything_back_and_replaces_the_meshes() {
     let mut b = SimBridge::default_scene();
-    let initial: Vec<_> = b.poses().iter().map(|p| (p.translation, p.rotation)).collect();
+    let initial: Vec<_> = b
+        .poses()
+        .iter()
+        .map(|p| (p.translation, p.rotation))
+        .collect();
     let key = b.poses()[0].key;
     b.apply(SimCommand::Start).unwrap();
     fire_at_wall(&mut b, 40.0);
@@ -107,7 +115,11 @@ fn reset_puts_everything_back_and_replaces_the_meshes() {
     assert_eq!(s.bonds_broken, 0);
     assert_eq!(s.time, 0.0);
     assert!(!s.running);
-    let after: Vec<_> = b.poses().iter().map(|p| (p.translation, p.rotation)).collect();
+    let after: Vec<_> = b
+        .poses()
+        .iter()
+        .map(|p| (p.translation, p.rotation))
+        .collect();
     assert_eq!(initial, after, "reset restores every fragment exactly");
     // Meshes of the old build are stale (projectile keys are reused after a reset).
     assert!(b.piece_mesh(key).is_none());
@@ -293,7 +305,10 @@ fn custom_projectile_and_custom_mesh_checks() {
     assert!(check_custom_mesh(&good).is_ok());
     let broken = dir.path().join("broken.obj");
     std::fs::write(&broken, "v 0 0 0\nf 1 2 3\n").unwrap();
-    assert!(check_custom_mesh(&broken).is_err(), "a face with missing vertices");
+    assert!(
+        check_custom_mesh(&broken).is_err(),
+        "a face with missing vertices"
+    );
     assert!(check_custom_mesh(&dir.path().join("none.stl")).is_err());
 
     let mut b = SimBridge::default_scene();

@@ -198,11 +198,13 @@ fn fire_ok_sets_the_projectile_only_when_valid() {
 
 #[test]
 fn negative_radius_keeps_the_previous_explosion() {
-    let mut s = UiState::default();
-    s.force_form = ForceForm {
-        enabled: true,
-        radius: "3".into(),
-        power: "100".into(),
+    let mut s = UiState {
+        force_form: ForceForm {
+            enabled: true,
+            radius: "3".into(),
+            power: "100".into(),
+        },
+        ..Default::default()
     };
     s.update_force();
     assert_eq!(s.force.radius, 3.0);
