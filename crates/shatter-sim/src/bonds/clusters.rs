@@ -7,7 +7,9 @@
 //! - a contact force `F` on fragment `f` of a body of mass `M` (Rapier's contact-force
 //!   events) loads the bonds at graph distance `d` from `f` with `F·(1 − m_f/M)·½^d`, for
 //!   `d = 0, 1, 2` (the part of the impulse that must pass through the bonds to move the
-//!   rest of the body; fixed bodies have `M = ∞`);
+//!   rest of the body; fixed bodies have `M = ∞`). Only the part of a body's contact
+//!   forces beyond its weight counts (`World::weight_relief` in `world/step.rs`): a block
+//!   resting on the ground holds, a hard landing or a hit loads it;
 //! - an explosion of power `P` (N·s) and radius `r` loads each bond whose centroid is at
 //!   distance `x < r` with `P·(1 − x/r)/dt`.
 

@@ -118,6 +118,7 @@ impl World {
     }
 
     fn break_clusters(&mut self, hits: &[ContactHit]) {
+        let relief = self.weight_relief(hits);
         let mut loads: BTreeMap<u32, Loads> = BTreeMap::new();
         for hit in hits {
             for (collider, sign) in [(hit.collider1, -1.0), (hit.collider2, 1.0)] {
@@ -150,12 +151,16 @@ impl World {
                     .and_then(|b| self.physics.bodies.get(b))
                     .filter(|rb| rb.is_dynamic())
                     .map_or(0.0, |rb| rb.mass());
+                let factor = co
+                    .parent()
+                    .and_then(|b| relief.get(&b.into_raw_parts()).copied())
+                    .unwrap_or(1.0);
                 let entry = loads.entry(object).or_default();
                 clusters::load_from_contact(
                     &self.physics,
                     live,
                     f,
-                    hit.force,
+                    hit.force * factor,
                     hit.impulse * sign,
                     other_mass,
                     entry,
@@ -163,6 +168,43 @@ impl World {
             }
         }
         self.apply_loads(loads);
+    }
+
+    /// Per dynamic cluster body touched this step: the fraction of its reported contact
+    /// forces that does more than hold it up, `max(0, (S − M·|g|) / S)` for a sum `S` of
+    /// contact forces and a weight `M·|g|`. A body resting on the ground (S ≈ M·|g|) puts no
+    /// load on its bonds; a hard landing or a hit (S ≫ M·|g|) nearly all of it. Bodies not
+    /// in the map (fixed ones) take the full force.
+    fn weight_relief(&self, hits: &[ContactHit]) -> BTreeMap<(u32, u32), f32> {
+        // Keyed by the handle's raw parts (handles are not ordered); sums in hit order, so
+        // the result is deterministic.
+        let mut sums: BTreeMap<(u32, u32), f32> = BTreeMap::new();
+        for hit in hits {
+            for collider in [hit.collider1, hit.collider2] {
+                let Some(co) = self.physics.colliders.get(collider) else {
+                    continue;
+                };
+                if !matches!(untag(co.user_data), Some((Kind::Fragment, _, _))) {
+                    continue;
+                }
+                if let Some(b) = co.parent() {
+                    *sums.entry(b.into_raw_parts()).or_insert(0.0) += hit.force;
+                }
+            }
+        }
+        let g = self.settings.gravity.length();
+        sums.into_iter()
+            .filter_map(|(raw, sum)| {
+                let rb = self
+                    .physics
+                    .bodies
+                    .get(RigidBodyHandle::from_raw_parts(raw.0, raw.1))?;
+                if !rb.is_dynamic() || sum <= 0.0 {
+                    return None;
+                }
+                Some((raw, ((sum - rb.mass() * g) / sum).max(0.0)))
+            })
+            .collect()
     }
 
     /// Breaks overloaded bonds and splits the bodies they held.
