@@ -7,7 +7,7 @@ use std::collections::HashSet;
 use std::path::Path;
 
 use shatter_report::ReportError;
-use shatter_report::plot::{LinePlot, Series, plot_lines};
+use shatter_report::plot::{LegendPosition, LinePlot, Series, plot_lines};
 
 /// RGB pixels of a PNG file, with its size.
 fn decode_png(path: &Path) -> (u32, u32, Vec<[u8; 3]>) {
@@ -128,4 +128,118 @@ fn an_unwritable_path_is_an_error_not_a_panic() {
     let svg = dir.path().join("missing/dir/p.svg");
     let err = plot_lines(&series, "t", "x", "y", &png, &svg).unwrap_err();
     assert!(matches!(err, ReportError::Plot { .. }), "{err}");
+}
+
+/// Regression: a title wider than the image was drawn at full size, centred, and cut off
+/// at both edges (the creation plot "Creation time (fracture + bodies and joints), …").
+#[test]
+fn a_long_title_is_shrunk_to_fit_inside_the_margins() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("long.png");
+    let series = two_series();
+    let title = "Creation time (fracture + bodies and joints), interior placement, mean of 5 \
+                 runs (band: min–max)";
+    let mut plot = LinePlot::new(&series, title, "random points", "time [ms]");
+    plot.size = (800, 480);
+    plot.write_png(&path).unwrap();
+    let (w, _, pixels) = decode_png(&path);
+    let at = |x: u32, y: u32| pixels[(y * w + x) as usize];
+    // The title band: dark text is there, but none in the 8 outermost columns.
+    let band = 0..40;
+    let text = band
+        .clone()
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .filter(|&(x, y)| at(x, y).iter().all(|&c| c < 100))
+        .count();
+    assert!(text > 200, "no title drawn ({text} dark pixels)");
+    for y in band {
+        for x in (0..8).chain(w - 8..w) {
+            assert_eq!(
+                at(x, y),
+                [255, 255, 255],
+                "title pixel at the edge ({x}, {y})"
+            );
+        }
+    }
+}
+
+/// Regression: with five-digit x values (break forces up to 80000 N) the last tick label,
+/// centred on the plot's right edge, ran past the image and was cut to "8000".
+#[test]
+fn the_last_tick_label_is_not_cut_off_at_the_right_edge() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("wide.png");
+    let series = [Series::new(
+        "joints",
+        (1..=8)
+            .map(|i| (i as f64 * 10_000.0, 200.0 / i as f64))
+            .collect(),
+    )];
+    LinePlot::new(&series, "Bonds broken", "break force [N]", "bonds")
+        .write_png(&path)
+        .unwrap();
+    let (w, h, pixels) = decode_png(&path);
+    // Nothing is drawn in the 8 rightmost columns.
+    for y in 0..h {
+        for x in w - 8..w {
+            assert_eq!(
+                pixels[(y * w + x) as usize],
+                [255, 255, 255],
+                "pixel drawn at the right edge ({x}, {y})"
+            );
+        }
+    }
+}
+
+/// With lines through every corner (an X), the automatic legend goes right of the plot:
+/// the series colours appear there (the line samples) and the SVG still names them.
+#[test]
+fn a_crowded_plot_gets_its_legend_outside_the_plot_area() {
+    let dir = tempfile::tempdir().unwrap();
+    let rising: Vec<(f64, f64)> = (0..=20).map(|i| (i as f64, i as f64)).collect();
+    let falling: Vec<(f64, f64)> = (0..=20).map(|i| (i as f64, 20.0 - i as f64)).collect();
+    let series = [
+        Series::new("rising line", rising),
+        Series::new("falling line", falling),
+    ];
+    let png = dir.path().join("x.png");
+    let svg = dir.path().join("x.svg");
+    let plot = LinePlot::new(&series, "An X", "x", "y");
+    assert_eq!(plot.legend, LegendPosition::Auto);
+    plot.write_png(&png).unwrap();
+    plot.write_svg(&svg).unwrap();
+
+    let (w, h, pixels) = decode_png(&png);
+    // The legend column: the last 150 pixels, where an inside legend would leave only
+    // the plot's right edge (lines end there, at x = 20).
+    let in_column = |colour: [u8; 3]| {
+        (0..h).any(|y| (w - 150..w - 8).any(|x| pixels[(y * w + x) as usize] == colour))
+    };
+    assert!(
+        in_column([0, 114, 178]),
+        "no first-series sample right of the plot"
+    );
+    assert!(
+        in_column([230, 159, 0]),
+        "no second-series sample right of the plot"
+    );
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.contains("rising line") && text.contains("falling line"));
+
+    // Asked for explicitly, a corner legend leaves that column to the plot alone: no
+    // series colour right of the lines' end there.
+    let mut inside = LinePlot::new(&series, "An X", "x", "y");
+    inside.legend = LegendPosition::UpperLeft;
+    inside.write_png(&png).unwrap();
+    let (w, h, pixels) = decode_png(&png);
+    let any_colour = (0..h).any(|y| {
+        (w - 40..w).any(|x| {
+            let p = pixels[(y * w + x) as usize];
+            p == [0, 114, 178] || p == [230, 159, 0]
+        })
+    });
+    assert!(
+        !any_colour,
+        "series colour right of the plot with an inside legend"
+    );
 }

@@ -1,12 +1,20 @@
-//! `shatter simulate SCENE.toml [--seconds T | --steps N] [--bonds joints|clusters] [--json]`:
-//! runs a scene headless and prints its statistics and the digest of the final state.
+//! `shatter simulate SCENE.toml [--seconds T | --steps N] [--bonds joints|clusters] [--json]
+//! [--export RUN.glb [--fps F]] [--record RUN.csv]`: runs a scene headless and prints its
+//! statistics and the digest of the final state; optionally writes the run as an animated
+//! glTF and its per-step statistics as CSV.
 
-use std::path::PathBuf;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::{Args, ValueEnum};
-use shatter_sim::BondModel;
+use shatter_geom::{DVec3, TriMesh, shapes};
+use shatter_report::export::{FragmentMesh, Pose as KeyPose};
+use shatter_report::record::{RunRecorder, StepStats};
 use shatter_sim::scene::Scene;
+use shatter_sim::{BondModel, ObjectId, Pose, ProjectileShape, ProjectileSpec, World};
+
+use crate::args::check_writable;
 
 /// Bond model on the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -26,6 +34,9 @@ impl From<BondsArg> for BondModel {
     }
 }
 
+/// Keyframes per simulated second of `--export` when `--fps` is not given.
+pub const DEFAULT_FPS: f64 = 30.0;
+
 /// Arguments of `shatter simulate`.
 #[derive(Debug, Args)]
 pub struct SimulateArgs {
@@ -44,6 +55,41 @@ pub struct SimulateArgs {
     /// Print one JSON object.
     #[arg(long)]
     pub json: bool,
+    /// Write the run as an animated binary glTF: one node per fragment and per
+    /// projectile, keyframed (viewable in Blender or any glTF viewer).
+    #[arg(long, value_name = "RUN.glb")]
+    pub export: Option<PathBuf>,
+    /// Keyframes per simulated second in --export (default 30; 0: one per step). The
+    /// first and the last state are always keyframes.
+    #[arg(long, value_name = "F", requires = "export")]
+    pub fps: Option<f64>,
+    /// Write per-step statistics as CSV: one row per step, with a header.
+    #[arg(long, value_name = "RUN.csv")]
+    pub record: Option<PathBuf>,
+}
+
+/// What `--export` wrote.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct ExportSummary {
+    /// The GLB file.
+    pub path: PathBuf,
+    /// Nodes in the file (fragments + projectiles).
+    pub nodes: usize,
+    /// Nodes that are fragments (one per fragment of every object).
+    pub fragment_nodes: usize,
+    /// Nodes that are projectiles (one per projectile in flight at some keyframe).
+    pub projectile_nodes: usize,
+    /// Keyframes per node.
+    pub keyframes: usize,
+}
+
+/// What `--record` wrote.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct RecordSummary {
+    /// The CSV file.
+    pub path: PathBuf,
+    /// Rows after the header (one per step).
+    pub rows: usize,
 }
 
 /// What a run measured.
@@ -65,10 +111,85 @@ pub struct SimulateReport {
     pub diverged: usize,
     /// Hash of the final state (hex).
     pub digest: String,
+    /// The animated glTF written by `--export`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub export: Option<ExportSummary>,
+    /// The statistics written by `--record`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub record: Option<RecordSummary>,
 }
 
-/// Runs `shatter simulate`. Every error is the scene's fault (bad input, exit code 2).
+/// The validated output files.
+#[derive(Debug, Clone, PartialEq)]
+struct Outputs {
+    export: Option<PathBuf>,
+    fps: f64,
+    record: Option<PathBuf>,
+}
+
+impl Outputs {
+    /// Checks the output flags before any work: `--export` ends in `.glb`, `--fps` is a
+    /// number ≥ 0, every output can be written, and no two of the scene and the outputs
+    /// are the same file.
+    fn from_args(args: &SimulateArgs) -> anyhow::Result<Self> {
+        let fps = args.fps.unwrap_or(DEFAULT_FPS);
+        if !(fps.is_finite() && fps >= 0.0) {
+            anyhow::bail!("--fps must be a non-negative number, got {fps}");
+        }
+        if let Some(path) = &args.export {
+            let glb = path
+                .extension()
+                .and_then(|e| e.to_str())
+                .is_some_and(|e| e.eq_ignore_ascii_case("glb"));
+            if !glb {
+                anyhow::bail!(
+                    "{}: unknown export format; --export writes binary glTF, use a .glb file \
+                     name",
+                    path.display()
+                );
+            }
+        }
+        let named = [("--export", &args.export), ("--record", &args.record)];
+        for (flag, path) in named {
+            let Some(path) = path else { continue };
+            if same_file(path, &args.scene) {
+                anyhow::bail!("{}: {flag} would overwrite the scene file", path.display());
+            }
+            check_writable(path).map_err(|e| anyhow::anyhow!("{e}"))?;
+        }
+        if let (Some(a), Some(b)) = (&args.export, &args.record)
+            && same_file(a, b)
+        {
+            anyhow::bail!("{}: --export and --record name the same file", a.display());
+        }
+        Ok(Self {
+            export: args.export.clone(),
+            fps,
+            record: args.record.clone(),
+        })
+    }
+}
+
+/// Whether two paths name the same file (compared through their canonical parent
+/// folders, so the files need not exist).
+fn same_file(a: &Path, b: &Path) -> bool {
+    fn canonical(p: &Path) -> Option<PathBuf> {
+        if let Ok(c) = p.canonicalize() {
+            return Some(c);
+        }
+        let parent = match p.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        Some(parent.canonicalize().ok()?.join(p.file_name()?))
+    }
+    a == b || matches!((canonical(a), canonical(b)), (Some(x), Some(y)) if x == y)
+}
+
+/// Runs `shatter simulate`. Every error is the scene's or a flag's fault (bad input,
+/// exit code 2); output paths are checked before the scene is even loaded.
 pub fn run(args: &SimulateArgs) -> anyhow::Result<SimulateReport> {
+    let outputs = Outputs::from_args(args)?;
     let scene = Scene::load(&args.scene).with_context(|| args.scene.display().to_string())?;
     let mut world = scene
         .build(args.bonds.map(BondModel::from))
@@ -82,13 +203,36 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<SimulateReport> {
         (None, None) => (scene.seconds / world.settings().dt as f64).round() as u64,
     };
     world.start();
+    let mut run_export = outputs
+        .export
+        .as_ref()
+        .map(|_| RunExport::new(&world, outputs.fps))
+        .transpose()?;
+    let mut stats_log = outputs.record.as_ref().map(|_| RunRecorder::new());
     let mut total_ms = 0.0;
-    for _ in 0..steps {
+    for step in 0..steps {
         world.step();
-        total_ms += world.stats().last_step_ms;
+        let stats = world.stats();
+        total_ms += stats.last_step_ms;
+        if let Some(log) = &mut stats_log {
+            log.record_stats(StepStats {
+                step: stats.steps,
+                time: stats.time,
+                bodies: stats.bodies,
+                fragments: stats.fragments,
+                bonds_total: stats.bonds_total,
+                bonds_broken: stats.bonds_broken,
+                diverged: stats.diverged,
+                debris_removed: stats.debris_removed,
+                millis: stats.last_step_ms,
+            });
+        }
+        if let Some(export) = &mut run_export {
+            export.observe(&world, step + 1 == steps)?;
+        }
     }
     let stats = world.stats();
-    let report = SimulateReport {
+    let mut report = SimulateReport {
         steps: stats.steps,
         bodies: stats.bodies,
         fragments: stats.fragments,
@@ -101,7 +245,20 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<SimulateReport> {
         },
         diverged: stats.diverged,
         digest: format!("{:016x}", world.digest()),
+        export: None,
+        record: None,
     };
+    if let (Some(export), Some(path)) = (run_export, &outputs.export) {
+        report.export = Some(export.write(path)?);
+    }
+    if let (Some(log), Some(path)) = (stats_log, &outputs.record) {
+        log.write_csv(path)
+            .with_context(|| format!("cannot write --record {}", path.display()))?;
+        report.record = Some(RecordSummary {
+            path: path.clone(),
+            rows: log.stats().len(),
+        });
+    }
     if args.json {
         println!("{}", serde_json::to_string(&report)?);
     } else {
@@ -116,6 +273,292 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<SimulateReport> {
             report.diverged,
             report.digest
         );
+        if let Some(e) = &report.export {
+            println!(
+                "wrote {} ({} nodes: {} fragments, {} projectiles; {} keyframes)",
+                e.path.display(),
+                e.nodes,
+                e.fragment_nodes,
+                e.projectile_nodes,
+                e.keyframes
+            );
+        }
+        if let Some(r) = &report.record {
+            println!("wrote {} ({} steps)", r.path.display(), r.rows);
+        }
     }
     Ok(report)
+}
+
+/// The animated export of a run: a node per fragment of every object (registered at
+/// the start) and per projectile (registered at the first keyframe it is in flight).
+struct RunExport {
+    recorder: RunRecorder,
+    /// Per object: its id and the node of each fragment, in fragment order.
+    objects: Vec<(ObjectId, Vec<usize>)>,
+    /// Per projectile seen in flight, by firing order ([`shatter_sim::ProjectileView::index`]): its
+    /// node.
+    projectiles: BTreeMap<usize, usize>,
+    fragment_nodes: usize,
+}
+
+impl RunExport {
+    /// Registers every fragment of every object of `world` and records the initial
+    /// keyframe (time 0).
+    fn new(world: &World, fps: f64) -> anyhow::Result<Self> {
+        let mut recorder = RunRecorder::new().with_keyframe_rate(fps);
+        let mut objects = Vec::new();
+        let mut fragment_nodes = 0;
+        for id in world.object_ids() {
+            let Some(fracture) = world.object_fracture(id) else {
+                continue;
+            };
+            let colour = world.object_color(id).unwrap_or([0.8; 3]);
+            let name = world
+                .object_spec(id)
+                .map(|s| s.name.trim().to_string())
+                .filter(|n| !n.is_empty())
+                .unwrap_or_else(|| format!("object_{}", id.0));
+            let mut nodes = Vec::with_capacity(fracture.fragments.len());
+            for (f, fragment) in fracture.fragments.iter().enumerate() {
+                let mut mesh =
+                    fragment_mesh(format!("{name}/fragment_{f}"), &fragment.mesh, colour);
+                if fragment.interior.len() == fragment.mesh.triangles.len() {
+                    mesh.interior = fragment.interior.clone();
+                }
+                let m = recorder.add_mesh(mesh);
+                nodes.push(recorder.add_node(format!("{name}/fragment_{f}"), m)?);
+            }
+            fragment_nodes += nodes.len();
+            objects.push((id, nodes));
+        }
+        let mut export = Self {
+            recorder,
+            objects,
+            projectiles: BTreeMap::new(),
+            fragment_nodes,
+        };
+        export.observe(world, false)?;
+        Ok(export)
+    }
+
+    /// Records a keyframe of every fragment and projectile when the rate asks for one,
+    /// or when `last` (the final state). A projectile that flies only between two
+    /// keyframes gets no node.
+    fn observe(&mut self, world: &World, last: bool) -> anyhow::Result<()> {
+        let time = world.stats().time;
+        let keyframe =
+            self.recorder.wants_keyframe(time) || (last && self.recorder.can_record_at(time));
+        if !keyframe {
+            return Ok(());
+        }
+        let mut poses = self.track_projectiles(world)?;
+        for (id, nodes) in &self.objects {
+            for (f, pose) in world.fragment_poses(*id) {
+                if let Some(&node) = nodes.get(f as usize) {
+                    poses.push((node, key_pose(&pose)));
+                }
+            }
+        }
+        self.recorder
+            .record_keyframe(time, poses)
+            .context("recording the --export animation")
+    }
+
+    /// The poses of the projectiles in flight; one seen for the first time gets its
+    /// node (named after its firing order).
+    fn track_projectiles(&mut self, world: &World) -> anyhow::Result<Vec<(usize, KeyPose)>> {
+        let mut poses = Vec::new();
+        for view in world.projectiles() {
+            let node = match self.projectiles.get(&view.index) {
+                Some(&node) => node,
+                None => {
+                    let name = format!("projectile_{}", view.index);
+                    let mesh = self
+                        .recorder
+                        .add_mesh(projectile_mesh(name.clone(), view.spec));
+                    let node = self.recorder.add_node(name, mesh)?;
+                    self.projectiles.insert(view.index, node);
+                    node
+                }
+            };
+            poses.push((node, key_pose(&view.pose)));
+        }
+        Ok(poses)
+    }
+
+    /// Writes the GLB file.
+    fn write(self, path: &Path) -> anyhow::Result<ExportSummary> {
+        self.recorder
+            .write_glb(path)
+            .with_context(|| format!("cannot write --export {}", path.display()))?;
+        Ok(ExportSummary {
+            path: path.to_path_buf(),
+            nodes: self.recorder.node_count(),
+            fragment_nodes: self.fragment_nodes,
+            projectile_nodes: self.projectiles.len(),
+            keyframes: self.recorder.keyframe_count(),
+        })
+    }
+}
+
+fn key_pose(p: &Pose) -> KeyPose {
+    KeyPose::new(p.translation.to_array(), p.rotation.to_array())
+}
+
+/// A mesh for the export, in `f32`.
+fn fragment_mesh(name: String, mesh: &TriMesh, colour: [f32; 3]) -> FragmentMesh {
+    FragmentMesh::new(
+        name,
+        mesh.positions
+            .iter()
+            .map(|p| p.as_vec3().to_array())
+            .collect(),
+        mesh.triangles.clone(),
+        colour,
+    )
+}
+
+/// The projectile's shape as a mesh in its body's frame (the axis of a capsule or
+/// cylinder along `y`), sized like its collider. A custom convex shape is drawn as its
+/// bounding box.
+fn projectile_mesh(name: String, spec: &ProjectileSpec) -> FragmentMesh {
+    let s = f64::from(spec.size);
+    let mesh = match &spec.shape {
+        ProjectileShape::Cube => shapes::cube().transformed(DVec3::splat(s), DVec3::ZERO),
+        // Radius 0.5: diameter `size`.
+        ProjectileShape::Sphere => shapes::sphere(16, 8).transformed(DVec3::splat(s), DVec3::ZERO),
+        // Height 2, radius 0.5: height `size`, radius `size / 4`.
+        ProjectileShape::Capsule => {
+            shapes::capsule().transformed(DVec3::splat(s / 2.0), DVec3::ZERO)
+        }
+        // Height 2, radius 0.5: height and diameter `size`.
+        ProjectileShape::Cylinder => {
+            shapes::cylinder().transformed(DVec3::new(s, s / 2.0, s), DVec3::ZERO)
+        }
+        ProjectileShape::Custom(points) => {
+            let lo = points.iter().fold(DVec3::INFINITY, |a, &p| a.min(p * s));
+            let hi = points
+                .iter()
+                .fold(DVec3::NEG_INFINITY, |a, &p| a.max(p * s));
+            let size = (hi - lo).max(DVec3::splat(1e-3));
+            if size.is_finite() && lo.is_finite() {
+                shapes::cube().transformed(size, (lo + hi) / 2.0)
+            } else {
+                shapes::sphere(16, 8).transformed(DVec3::splat(s), DVec3::ZERO)
+            }
+        }
+    };
+    fragment_mesh(name, &mesh, spec.color)
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+    use super::*;
+
+    fn args(dir: &Path) -> SimulateArgs {
+        SimulateArgs {
+            scene: dir.join("scene.toml"),
+            seconds: None,
+            steps: Some(1),
+            bonds: None,
+            json: false,
+            export: Some(dir.join("run.glb")),
+            fps: None,
+            record: Some(dir.join("run.csv")),
+        }
+    }
+
+    #[test]
+    fn outputs_default_to_30_fps_and_refuse_bad_values() {
+        let dir = tempfile::tempdir().unwrap();
+        let ok = Outputs::from_args(&args(dir.path())).unwrap();
+        assert_eq!(ok.fps, DEFAULT_FPS);
+        type Change = fn(&mut SimulateArgs, &Path);
+        let cases: [(Change, &str); 6] = [
+            (
+                |a, _| a.fps = Some(-1.0),
+                "--fps must be a non-negative number",
+            ),
+            (
+                |a, _| a.fps = Some(f64::NAN),
+                "--fps must be a non-negative number",
+            ),
+            (
+                |a, d| a.export = Some(d.join("run.gltf")),
+                "use a .glb file name",
+            ),
+            (
+                |a, d| a.export = Some(d.join("none/run.glb")),
+                "does not exist",
+            ),
+            (
+                |a, d| a.record = Some(d.join("run.glb")),
+                "name the same file",
+            ),
+            (
+                |a, d| a.record = Some(d.join("scene.toml")),
+                "overwrite the scene",
+            ),
+        ];
+        for (change, message) in cases {
+            let mut a = args(dir.path());
+            change(&mut a, dir.path());
+            let e = Outputs::from_args(&a).unwrap_err();
+            assert!(e.to_string().contains(message), "{e}");
+        }
+    }
+
+    #[test]
+    fn same_file_sees_through_dot_segments() {
+        let dir = tempfile::tempdir().unwrap();
+        let a = dir.path().join("x.csv");
+        let b = dir.path().join(".").join("x.csv");
+        assert!(same_file(&a, &b));
+        assert!(!same_file(&a, &dir.path().join("y.csv")));
+    }
+
+    #[test]
+    fn projectile_meshes_have_the_collider_size() {
+        let spec = |shape| ProjectileSpec {
+            shape,
+            size: 0.4,
+            ..ProjectileSpec::default()
+        };
+        let extent = |m: &FragmentMesh| {
+            let mut lo = [f32::INFINITY; 3];
+            let mut hi = [f32::NEG_INFINITY; 3];
+            for p in &m.positions {
+                for k in 0..3 {
+                    lo[k] = lo[k].min(p[k]);
+                    hi[k] = hi[k].max(p[k]);
+                }
+            }
+            [0, 1, 2].map(|k| hi[k] - lo[k])
+        };
+        // The round shapes are polygons: their width across flats is a little smaller.
+        let close = |a: [f32; 3], b: [f32; 3]| (0..3).all(|k| (a[k] - b[k]).abs() < 5e-3);
+        let cube = projectile_mesh("c".into(), &spec(ProjectileShape::Cube));
+        assert!(close(extent(&cube), [0.4; 3]), "{:?}", extent(&cube));
+        let capsule = projectile_mesh("c".into(), &spec(ProjectileShape::Capsule));
+        assert!(
+            close(extent(&capsule), [0.2, 0.4, 0.2]),
+            "{:?}",
+            extent(&capsule)
+        );
+        let cylinder = projectile_mesh("c".into(), &spec(ProjectileShape::Cylinder));
+        assert!(
+            close(extent(&cylinder), [0.4, 0.4, 0.4]),
+            "{:?}",
+            extent(&cylinder)
+        );
+        let custom = ProjectileShape::Custom(vec![DVec3::ZERO, DVec3::new(1.0, 2.0, 0.5)]);
+        let custom = projectile_mesh("c".into(), &spec(custom));
+        assert!(
+            close(extent(&custom), [0.4, 0.8, 0.2]),
+            "{:?}",
+            extent(&custom)
+        );
+    }
 }

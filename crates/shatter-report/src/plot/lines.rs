@@ -5,6 +5,7 @@ use std::path::Path;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::font::{FAMILY, ensure_registered};
 use crate::ReportError;
@@ -57,14 +58,43 @@ impl Series {
 /// Where the legend goes inside the plot area.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum LegendPosition {
-    /// Top left corner (the default: rising curves leave it empty).
+    /// The first corner whose legend-sized area no line crosses, in the order upper
+    /// left, upper right, lower right, lower left; right of the plot when every corner
+    /// is crossed (the default).
     #[default]
+    Auto,
+    /// Top left corner.
     UpperLeft,
     /// Top right corner.
     UpperRight,
     /// Bottom right corner.
     LowerRight,
+    /// Bottom left corner.
+    LowerLeft,
+    /// Right of the plot area, outside it (the plot gets narrower).
+    Outside,
 }
+
+/// Font size of the title; a title too wide for the image is drawn smaller, down to
+/// [`MIN_TITLE_SIZE`].
+const TITLE_SIZE: u32 = 26;
+/// Smallest font size a long title is shrunk to.
+const MIN_TITLE_SIZE: u32 = 12;
+/// Margin around the chart, in pixels.
+const MARGIN: u32 = 16;
+/// Margin right of the chart: wider, so that the last x tick label, centred on the
+/// right edge of the plot, is not cut off (room for about ten characters).
+const RIGHT_MARGIN: u32 = 48;
+/// Height of the area under the plot for the x tick labels and description.
+const X_LABEL_AREA: u32 = 50;
+/// Width of the area left of the plot for the y tick labels and description.
+const Y_LABEL_AREA: u32 = 70;
+/// Font size of the legend.
+const LEGEND_SIZE: u32 = 16;
+/// Padding inside a legend drawn outside the plot, in pixels.
+const LEGEND_PAD: u32 = 8;
+/// Where the names start in a legend drawn outside the plot (after the line sample).
+const LEGEND_TEXT_X: u32 = 40;
 
 /// A line plot and its settings.
 ///
@@ -121,7 +151,7 @@ impl<'a> LinePlot<'a> {
             y_label: y_label.to_string(),
             size: (1000, 600),
             y_from_zero: true,
-            legend: LegendPosition::UpperLeft,
+            legend: LegendPosition::Auto,
         }
     }
 
@@ -199,11 +229,31 @@ impl<'a> LinePlot<'a> {
         ensure_registered()?;
         let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
         root.fill(&WHITE).map_err(err)?;
-        let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, (FAMILY, 26))
-            .margin(16)
-            .x_label_area_size(50)
-            .y_label_area_size(70)
+        let legend = match self.legend {
+            LegendPosition::Auto => {
+                let title_size = self.title_size(root, self.size.0).map_err(err)?;
+                self.emptiest_corner(x_range, y_range, title_size)
+                    .unwrap_or(LegendPosition::Outside)
+            }
+            fixed => fixed,
+        };
+        let (chart_area, legend_area) = if legend == LegendPosition::Outside {
+            let width = self.outside_legend_width(root).map_err(err)?;
+            let (chart_area, legend_area) =
+                root.split_horizontally(self.size.0.saturating_sub(width));
+            (chart_area, Some(legend_area))
+        } else {
+            (root.clone(), None)
+        };
+        let title_size = self
+            .title_size(&chart_area, chart_area.dim_in_pixel().0)
+            .map_err(err)?;
+        let mut chart = ChartBuilder::on(&chart_area)
+            .caption(&self.title, (FAMILY, title_size))
+            .margin(MARGIN)
+            .margin_right(RIGHT_MARGIN)
+            .x_label_area_size(X_LABEL_AREA)
+            .y_label_area_size(Y_LABEL_AREA)
             .build_cartesian_2d(x_range.clone(), y_range.clone())
             .map_err(err)?;
         chart
@@ -245,20 +295,170 @@ impl<'a> LinePlot<'a> {
             }
         }
 
-        let position = match self.legend {
-            LegendPosition::UpperLeft => SeriesLabelPosition::UpperLeft,
+        if let Some(area) = legend_area {
+            // Level with the top of the plot area: below the margin and the caption.
+            let top = (MARGIN + title_size * 3 / 2) as i32;
+            return self.draw_outside_legend(&area, top).map_err(err);
+        }
+        let position = match legend {
+            LegendPosition::UpperLeft | LegendPosition::Auto | LegendPosition::Outside => {
+                SeriesLabelPosition::UpperLeft
+            }
             LegendPosition::UpperRight => SeriesLabelPosition::UpperRight,
             LegendPosition::LowerRight => SeriesLabelPosition::LowerRight,
+            LegendPosition::LowerLeft => SeriesLabelPosition::LowerLeft,
         };
         chart
             .configure_series_labels()
             .position(position)
-            .label_font((FAMILY, 16))
+            .label_font((FAMILY, LEGEND_SIZE))
             .background_style(WHITE.mix(0.85))
             .border_style(RGBColor(160, 160, 160))
             .draw()
             .map_err(err)?;
         Ok(())
+    }
+}
+
+impl LinePlot<'_> {
+    /// The largest title font size (at most [`TITLE_SIZE`]) at which the title fits a
+    /// chart `width` pixels wide inside the margins (plotters centres it between them).
+    fn title_size<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        width: u32,
+    ) -> Result<u32, DrawingAreaErrorKind<DB::ErrorType>> {
+        let available = width.saturating_sub(MARGIN + RIGHT_MARGIN);
+        let mut size = TITLE_SIZE;
+        while size > MIN_TITLE_SIZE {
+            let style = TextStyle::from((FAMILY, size).into_font());
+            let (width, _) = root.estimate_text_size(&self.title, &style)?;
+            if width <= available {
+                break;
+            }
+            size -= 1;
+        }
+        Ok(size)
+    }
+
+    /// Width in pixels of a legend drawn right of the plot: a sample line and the
+    /// longest name, with padding.
+    fn outside_legend_width<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+    ) -> Result<u32, DrawingAreaErrorKind<DB::ErrorType>> {
+        let style = TextStyle::from((FAMILY, LEGEND_SIZE).into_font());
+        let mut longest = 0;
+        for s in self.series {
+            longest = longest.max(root.estimate_text_size(&s.name, &style)?.0);
+        }
+        Ok(LEGEND_TEXT_X + longest + 2 * LEGEND_PAD)
+    }
+
+    /// Draws the legend in `area` (right of the plot), its box starting `top` pixels
+    /// down: one row per series, a sample of its line then its name.
+    fn draw_outside_legend<DB: DrawingBackend>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+        top: i32,
+    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+        let style = TextStyle::from((FAMILY, LEGEND_SIZE).into_font())
+            .pos(Pos::new(HPos::Left, VPos::Center));
+        let row = (LEGEND_SIZE * 3 / 2) as i32;
+        let pad = LEGEND_PAD as i32;
+        let right = area.dim_in_pixel().0 as i32 - pad;
+        let bottom = top + 2 * pad + row * self.series.len() as i32;
+        area.draw(&Rectangle::new(
+            [(0, top), (right, bottom)],
+            RGBColor(160, 160, 160).stroke_width(1),
+        ))?;
+        for (i, s) in self.series.iter().enumerate() {
+            let colour = COLOURS[i % COLOURS.len()];
+            let y = top + pad + row * i as i32 + row / 2;
+            area.draw(&PathElement::new(
+                vec![(pad, y), (pad + 24, y)],
+                colour.stroke_width(3),
+            ))?;
+            area.draw(&Text::new(
+                s.name.clone(),
+                (LEGEND_TEXT_X as i32, y),
+                style.clone(),
+            ))?;
+        }
+        Ok(())
+    }
+
+    /// The corner for [`LegendPosition::Auto`]: the first whose legend-sized box (in
+    /// the plot's own proportions) holds no sample of any line, or `None` when every
+    /// corner is crossed.
+    fn emptiest_corner(
+        &self,
+        x_range: &Range<f64>,
+        y_range: &Range<f64>,
+        title_size: u32,
+    ) -> Option<LegendPosition> {
+        // The plot area in pixels, roughly (the caption takes about 1.5 lines).
+        let plot_w = f64::from(
+            self.size
+                .0
+                .saturating_sub(MARGIN + RIGHT_MARGIN + Y_LABEL_AREA),
+        )
+        .max(1.0);
+        let plot_h = f64::from(
+            self.size
+                .1
+                .saturating_sub(2 * MARGIN + X_LABEL_AREA + title_size * 3 / 2),
+        )
+        .max(1.0);
+        // The legend box in pixels: a row per series, a sample line and the longest name,
+        // plus plotters' 10 px offset from the corner.
+        let longest = self
+            .series
+            .iter()
+            .map(|s| s.name.chars().count())
+            .max()
+            .unwrap_or(0) as f64;
+        let legend_w = 10.0 + 40.0 + longest * 0.6 * f64::from(LEGEND_SIZE);
+        let legend_h = 10.0 + 10.0 + self.series.len() as f64 * 1.25 * f64::from(LEGEND_SIZE);
+        let (w, h) = ((legend_w / plot_w).min(1.0), (legend_h / plot_h).min(1.0));
+        let span = |r: &Range<f64>| (r.end - r.start).max(f64::MIN_POSITIVE);
+        // Samples of every line in the unit square (0,0 = lower left), 16 per segment.
+        let mut samples = Vec::new();
+        for s in self.series {
+            let unit: Vec<(f64, f64)> = s
+                .points
+                .iter()
+                .map(|&(x, y)| {
+                    (
+                        (x - x_range.start) / span(x_range),
+                        (y - y_range.start) / span(y_range),
+                    )
+                })
+                .collect();
+            samples.extend(unit.first().copied());
+            for pair in unit.windows(2) {
+                let ((x0, y0), (x1, y1)) = (pair[0], pair[1]);
+                samples.extend((1..=16).map(|k| {
+                    let t = f64::from(k) / 16.0;
+                    (x0 + t * (x1 - x0), y0 + t * (y1 - y0))
+                }));
+            }
+        }
+        let corners = [
+            (LegendPosition::UpperLeft, 0.0, 1.0 - h),
+            (LegendPosition::UpperRight, 1.0 - w, 1.0 - h),
+            (LegendPosition::LowerRight, 1.0 - w, 0.0),
+            (LegendPosition::LowerLeft, 0.0, 0.0),
+        ];
+        let crossed = |u0: f64, v0: f64| {
+            samples
+                .iter()
+                .any(|&(u, v)| u >= u0 && u <= u0 + w && v >= v0 && v <= v0 + h)
+        };
+        corners
+            .iter()
+            .find(|&&(_, u0, v0)| !crossed(u0, v0))
+            .map(|&(corner, _, _)| corner)
     }
 }
 
@@ -329,6 +529,49 @@ mod tests {
         assert_eq!(tick_label(&2.5), "2.5");
         assert_eq!(tick_label(&0.125), "0.125");
         assert_eq!(tick_label(&-0.0), "0");
+    }
+
+    fn corner_of(lines: Vec<Vec<(f64, f64)>>) -> LegendPosition {
+        let s: Vec<Series> = lines
+            .into_iter()
+            .enumerate()
+            .map(|(i, points)| Series::new(format!("line {i}"), points))
+            .collect();
+        let plot = LinePlot::new(&s, "t", "x", "y");
+        let (x, y) = plot.ranges().unwrap();
+        plot.emptiest_corner(&x, &y, TITLE_SIZE)
+            .unwrap_or(LegendPosition::Outside)
+    }
+
+    #[test]
+    fn the_automatic_legend_goes_where_the_lines_are_not() {
+        let line = |f: fn(f64) -> f64| (0..=20).map(|i| (i as f64, f(i as f64))).collect();
+        // Rising: the upper left corner is empty.
+        assert_eq!(corner_of(vec![line(|x| x)]), LegendPosition::UpperLeft);
+        // Falling from the top left: the upper right is empty.
+        assert_eq!(
+            corner_of(vec![line(|x| 20.0 - x)]),
+            LegendPosition::UpperRight
+        );
+        // Along the top, and a short stretch along the bottom at the left: only the
+        // lower right is empty.
+        let top = line(|_| 20.0);
+        let bottom_left = vec![(0.0, 0.0), (2.0, 0.0)];
+        assert_eq!(
+            corner_of(vec![top.clone(), bottom_left.clone()]),
+            LegendPosition::LowerRight
+        );
+        // The same stretch at the right: only the lower left is empty.
+        let bottom_right = vec![(18.0, 0.0), (20.0, 0.0)];
+        assert_eq!(
+            corner_of(vec![top, bottom_right]),
+            LegendPosition::LowerLeft
+        );
+        // An X crosses every corner: the legend goes outside.
+        assert_eq!(
+            corner_of(vec![line(|x| x), line(|x| 20.0 - x)]),
+            LegendPosition::Outside
+        );
     }
 
     #[test]

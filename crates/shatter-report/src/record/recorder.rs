@@ -21,18 +21,24 @@ pub struct StepStats {
     pub bonds_total: usize,
     /// Bonds broken so far.
     pub bonds_broken: usize,
+    /// Bodies removed so far because their state diverged (NaN or runaway speed).
+    pub diverged: usize,
+    /// Debris bodies removed so far by the debris cap.
+    pub debris_removed: usize,
     /// Wall-clock time the step took, in milliseconds.
     pub millis: f64,
 }
 
 /// Columns of [`RunRecorder::stats_table`].
-pub const STATS_HEADER: [&str; 7] = [
+pub const STATS_HEADER: [&str; 9] = [
     "step",
     "time_s",
     "bodies",
     "fragments",
     "bonds_total",
     "bonds_broken",
+    "diverged",
+    "debris_removed",
     "step_ms",
 ];
 
@@ -122,40 +128,85 @@ impl RunRecorder {
         self.stats.push(stats);
     }
 
-    /// Whether a keyframe at `time` would be kept (the first one always is).
+    /// Whether a keyframe at `time` would be kept: the time can be recorded (see
+    /// [`RunRecorder::can_record_at`]) and is at least one keyframe interval after the
+    /// previous keyframe (the first one always is).
     pub fn wants_keyframe(&self, time: f64) -> bool {
-        match self.times.last() {
-            None => true,
-            // A little slack so that 60 Hz steps give exactly 30 keyframes a second.
-            Some(&last) => time - last >= self.keyframe_interval * (1.0 - 1e-3),
-        }
+        self.can_record_at(time)
+            && match self.times.last() {
+                None => true,
+                // A little slack so that 60 Hz steps give exactly 30 keyframes a second.
+                Some(&last) => time - last >= self.keyframe_interval * (1.0 - 1e-3),
+            }
+    }
+
+    /// Whether a keyframe at `time` can be recorded at all, whatever the rate: `time` is
+    /// finite, at least 0, and after the previous keyframe also once rounded to `f32`
+    /// (the precision of glTF times).
+    pub fn can_record_at(&self, time: f64) -> bool {
+        time.is_finite()
+            && time >= 0.0
+            && self
+                .times
+                .last()
+                .is_none_or(|&last| time > last && time as f32 > last as f32)
+    }
+
+    /// Time of the last keyframe recorded, if any.
+    pub fn last_keyframe_time(&self) -> Option<f64> {
+        self.times.last().copied()
     }
 
     /// Records the poses of the nodes that exist at `time`. Returns `false` (and records
     /// nothing) when the keyframe rate says to skip this time.
     ///
-    /// Fails on an unknown node id or a time not after the previous keyframe.
+    /// Fails on an unknown node id or a time that cannot be recorded (see
+    /// [`RunRecorder::can_record_at`]).
     pub fn record_poses(
         &mut self,
         time: f64,
         poses: impl IntoIterator<Item = (usize, Pose)>,
     ) -> Result<bool, ReportError> {
-        if !time.is_finite()
-            || time < 0.0
-            || self
-                .times
-                .last()
-                .is_some_and(|&last| time <= last || time as f32 <= last as f32)
-        {
-            return Err(ReportError::Scene(format!(
-                "keyframe time {time} is not finite, negative or not after the previous one \
-                 ({:?})",
-                self.times.last()
-            )));
-        }
+        self.check_time(time)?;
         if !self.wants_keyframe(time) {
             return Ok(false);
         }
+        self.push_keyframe(time, poses)?;
+        Ok(true)
+    }
+
+    /// Records the poses of the nodes that exist at `time` whatever the keyframe rate
+    /// (for example the last step of a run, so that the animation ends where the run
+    /// ended).
+    ///
+    /// Fails on an unknown node id or a time that cannot be recorded (see
+    /// [`RunRecorder::can_record_at`]); nothing is recorded then.
+    pub fn record_keyframe(
+        &mut self,
+        time: f64,
+        poses: impl IntoIterator<Item = (usize, Pose)>,
+    ) -> Result<(), ReportError> {
+        self.check_time(time)?;
+        self.push_keyframe(time, poses)
+    }
+
+    fn check_time(&self, time: f64) -> Result<(), ReportError> {
+        if self.can_record_at(time) {
+            return Ok(());
+        }
+        Err(ReportError::Scene(format!(
+            "keyframe time {time} is not finite, negative or not after the previous one \
+             ({:?})",
+            self.times.last()
+        )))
+    }
+
+    /// Appends a keyframe (the time is already checked).
+    fn push_keyframe(
+        &mut self,
+        time: f64,
+        poses: impl IntoIterator<Item = (usize, Pose)>,
+    ) -> Result<(), ReportError> {
         let mut column = vec![None; self.nodes.len()];
         for (node, pose) in poses {
             let slot = column.get_mut(node).ok_or_else(|| {
@@ -170,7 +221,7 @@ impl RunRecorder {
         for (track, pose) in self.poses.iter_mut().zip(column) {
             track.push(pose);
         }
-        Ok(true)
+        Ok(())
     }
 
     /// Number of keyframes recorded.
@@ -200,6 +251,8 @@ impl RunRecorder {
                     Cell::from(s.fragments),
                     Cell::from(s.bonds_total),
                     Cell::from(s.bonds_broken),
+                    Cell::from(s.diverged),
+                    Cell::from(s.debris_removed),
                     Cell::from(s.millis),
                 ])
                 .expect("every row has one cell per STATS_HEADER column");
@@ -335,6 +388,8 @@ mod tests {
             fragments: 10,
             bonds_total: 20,
             bonds_broken: 2,
+            diverged: 1,
+            debris_removed: 4,
             millis: 0.5,
         });
         let csv = rec.stats_table().to_csv_string().unwrap();
@@ -344,6 +399,42 @@ mod tests {
         assert_eq!(row[0], "1");
         assert_eq!(row[2], "3");
         assert_eq!(row[5], "2");
+        assert_eq!(row[6], "1");
+        assert_eq!(row[7], "4");
+        assert_eq!(row[8], "0.5");
         assert_eq!(row[1].parse::<f64>().unwrap(), 1.0 / 60.0);
+    }
+
+    #[test]
+    fn a_forced_keyframe_ignores_the_rate_but_not_the_order() {
+        let mut rec = RunRecorder::new().with_keyframe_rate(10.0);
+        let m = rec.add_mesh(tetra());
+        let a = rec.add_node("a", m).unwrap();
+        assert!(rec.record_poses(0.0, [(a, at(0.0))]).unwrap());
+        // 0.05 s is closer than the 0.1 s interval: skipped by the rate...
+        assert!(!rec.record_poses(0.05, [(a, at(1.0))]).unwrap());
+        assert_eq!(rec.keyframe_count(), 1);
+        // ... but kept when forced.
+        rec.record_keyframe(0.05, [(a, at(1.0))]).unwrap();
+        assert_eq!(rec.keyframe_count(), 2);
+        assert_eq!(rec.last_keyframe_time(), Some(0.05));
+        assert!(rec.record_keyframe(0.05, [(a, at(1.0))]).is_err());
+        assert!(rec.record_keyframe(0.06, [(a + 1, at(1.0))]).is_err());
+        assert_eq!(rec.keyframe_count(), 2);
+    }
+
+    #[test]
+    fn times_equal_once_rounded_to_f32_cannot_be_recorded() {
+        let mut rec = RunRecorder::new();
+        let m = rec.add_mesh(tetra());
+        let a = rec.add_node("a", m).unwrap();
+        rec.record_keyframe(1000.0, [(a, at(0.0))]).unwrap();
+        let next = 1000.0 + 1e-6;
+        assert_eq!(next as f32, 1000.0f32);
+        assert!(!rec.can_record_at(next));
+        assert!(!rec.wants_keyframe(next));
+        assert!(rec.record_poses(next, [(a, at(0.0))]).is_err());
+        assert!(!rec.can_record_at(f64::NAN));
+        assert!(rec.can_record_at(1000.5));
     }
 }
