@@ -274,13 +274,15 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<SimulateReport> {
             report.digest
         );
         if let Some(e) = &report.export {
+            let plural =
+                |n: usize, word: &str| format!("{n} {word}{}", if n == 1 { "" } else { "s" });
             println!(
-                "wrote {} ({} nodes: {} fragments, {} projectiles; {} keyframes)",
+                "wrote {} ({}: {}, {}; {})",
                 e.path.display(),
-                e.nodes,
-                e.fragment_nodes,
-                e.projectile_nodes,
-                e.keyframes
+                plural(e.nodes, "node"),
+                plural(e.fragment_nodes, "fragment"),
+                plural(e.projectile_nodes, "projectile"),
+                plural(e.keyframes, "keyframe")
             );
         }
         if let Some(r) = &report.record {
