@@ -120,8 +120,9 @@ fn run_script(
             ui_state.add.shape = ShapeKind::Cylinder;
             ui_state.add.random_vertices = "30".into();
             ui_state.add.color = ["0.35".into(), "0.75".into(), "0.35".into()];
-            ui_state.transform.position = ["6".into(), "1.5".into(), "3".into()];
-            ui_state.transform.scale = ["1.5".into(), "1.5".into(), "1.5".into()];
+            // Right of the wall, in view, set down just above the ground.
+            ui_state.transform.position = ["2.6".into(), "0.62".into(), "0.2".into()];
+            ui_state.transform.scale = ["0.6".into(), "0.6".into(), "0.6".into()];
             ui_state.next_page(&crate::sim_bridge::check_custom_mesh);
             if let Some(cmd) = ui_state.draw(&crate::sim_bridge::check_custom_mesh) {
                 pending.0.push(cmd);

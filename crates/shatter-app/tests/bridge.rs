@@ -342,3 +342,31 @@ fn custom_projectile_and_custom_mesh_checks() {
         .unwrap_err();
     assert!(err.contains("projectile"), "{err}");
 }
+
+#[test]
+fn keyboard_shortcuts_are_the_scene_controls_and_leave_the_camera_keys_alone() {
+    use bevy::prelude::KeyCode;
+    use shatter_app::input::shortcut;
+    assert_eq!(shortcut(KeyCode::Enter), Some(SimCommand::Start));
+    assert_eq!(shortcut(KeyCode::KeyP), Some(SimCommand::TogglePause));
+    assert_eq!(shortcut(KeyCode::KeyR), Some(SimCommand::Reset));
+    for camera_key in [KeyCode::KeyW, KeyCode::KeyA, KeyCode::KeyS, KeyCode::KeyD] {
+        assert_eq!(shortcut(camera_key), None);
+    }
+}
+
+#[test]
+fn the_state_line_the_web_page_reads_is_json_with_the_counts() {
+    let mut b = SimBridge::default_scene();
+    b.apply(SimCommand::Start).unwrap();
+    fire_at_wall(&mut b, 40.0);
+    steps(&mut b, 30);
+    let line = shatter_app::state_log::state_line(&b, 7);
+    let json: serde_json::Value =
+        serde_json::from_str(line.strip_prefix("SHATTER_STATE ").unwrap()).unwrap();
+    let s = b.stats();
+    assert_eq!(json["frames"], 7);
+    assert_eq!(json["bonds_broken"], s.bonds_broken as u64);
+    assert_eq!(json["fragments"], s.fragments as u64);
+    assert_eq!(json["running"], true);
+}
