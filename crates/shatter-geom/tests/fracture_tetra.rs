@@ -194,3 +194,43 @@ fn coplanar_points_are_an_error_not_a_panic() {
     let err = fracture(&l_block(), &tetra(30, 2, false, Placement::Thesis)).unwrap_err();
     assert!(err.to_string().contains("coplanar"), "{err}");
 }
+
+#[test]
+fn collision_pieces_of_merged_groups_stay_inside_their_fragment() {
+    // The thesis's placement merges many slivers; a group's hull would overlap its
+    // neighbours. Its pieces are its own tetrahedra instead: inside the fragment, and
+    // covering all of it but the negligible slivers.
+    let cube = builtin::cube();
+    let fr = fracture(&cube, &tetra(500, 0, false, Placement::Thesis)).unwrap();
+    let tet_volume =
+        |p: &[shatter_geom::DVec3]| (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])).abs() / 6.0;
+    let mut covered = 0.0;
+    let mut merged = 0;
+    for (i, f) in fr.fragments.iter().enumerate() {
+        if f.convex_pieces.len() == 1 && f.convex_pieces[0].len() > 4 {
+            // Its hull covers it.
+            merged += 1;
+            covered += f.volume;
+            // A group of slivers only: one hull of its points.
+            continue;
+        }
+        let pieces: f64 = f.convex_pieces.iter().map(|p| tet_volume(p)).sum();
+        assert!(
+            f.convex_pieces.iter().all(|p| p.len() == 4),
+            "fragment {i}: pieces are tetrahedra"
+        );
+        assert!(
+            pieces <= f.volume * (1.0 + 1e-9),
+            "fragment {i}: pieces {pieces} exceed the fragment {}",
+            f.volume
+        );
+        // A lone tetrahedron has 4 faces; a merged group more.
+        merged += (f.mesh.triangles.len() > 4) as usize;
+        covered += pieces;
+    }
+    assert!(merged > 10, "the thesis placement merges groups: {merged}");
+    assert!(
+        covered > 0.99,
+        "pieces cover the cube but its slivers: {covered}"
+    );
+}

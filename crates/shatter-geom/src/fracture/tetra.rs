@@ -172,9 +172,12 @@ pub(crate) fn tetra(
         ));
     }
 
+    // A tetrahedron is a collision piece unless its volume is negligible (a flat one
+    // would make a degenerate collider; those only add mass to their group).
+    let piece_ok: Vec<bool> = (0..nt).map(|t| vols[t] >= vmin).collect();
     let fragments = members
         .iter()
-        .map(|ts| group_fragment(ts, &del.tetrahedra, &del.neighbors, &frag, &pts))
+        .map(|ts| group_fragment(ts, &del.tetrahedra, &del.neighbors, &frag, &pts, &piece_ok))
         .collect();
 
     // Bonds: shared faces between tetrahedra of different fragments.
@@ -233,13 +236,16 @@ pub(crate) fn quality(c: [DVec3; 4]) -> f64 {
 
 /// The flat-shaded fragment of a group of tetrahedra: every face not shared inside the
 /// group, three own vertices each, wound outward; interior when another kept
-/// tetrahedron lies across it.
+/// tetrahedron lies across it. Its collision pieces are its tetrahedra (`piece_ok`
+/// ones): the hull of a merged group can be larger than the group and would overlap its
+/// neighbours, which the physics engine then pushes apart violently.
 fn group_fragment(
     ts: &[usize],
     tets: &[[u32; 4]],
     neighbors: &[[u32; 4]],
     frag: &[u32],
     pts: &[DVec3],
+    piece_ok: &[bool],
 ) -> Fragment {
     let id = frag[ts[0]];
     let mut positions = Vec::with_capacity(ts.len() * 12);
@@ -266,12 +272,21 @@ fn group_fragment(
     }
     let mesh = TriMesh::new(positions, triangles);
     let (volume, centroid, inertia) = mass_properties(&mesh.positions, &mesh.triangles);
-    piece_pts.sort_unstable();
-    piece_pts.dedup();
+    let mut convex_pieces: Vec<Vec<DVec3>> = ts
+        .iter()
+        .filter(|&&t| piece_ok[t] || ts.len() == 1)
+        .map(|&t| tets[t].iter().map(|&i| pts[i as usize]).collect())
+        .collect();
+    if convex_pieces.is_empty() {
+        // Only slivers (merged up to the volume threshold): their common hull.
+        piece_pts.sort_unstable();
+        piece_pts.dedup();
+        convex_pieces.push(piece_pts.iter().map(|&i| pts[i as usize]).collect());
+    }
     Fragment {
         mesh,
         interior,
-        convex_pieces: vec![piece_pts.iter().map(|&i| pts[i as usize]).collect()],
+        convex_pieces,
         volume,
         centroid,
         inertia,
