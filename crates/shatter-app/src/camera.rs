@@ -90,7 +90,30 @@ impl Plugin for CameraPlugin {
         app.add_systems(Startup, move |mut commands: Commands| {
             commands.spawn((Camera3d::default(), start.transform(), start));
         })
-        .add_systems(Update, control_camera);
+        .add_systems(Update, (control_camera, software_renderer_without_msaa));
+    }
+}
+
+/// On a software renderer (Mesa's llvmpipe/lavapipe, SwiftShader) multisampling costs
+/// more than everything else in the frame: turn it off there, once.
+fn software_renderer_without_msaa(
+    adapter: Option<Res<bevy::render::renderer::RenderAdapterInfo>>,
+    cameras: Query<Entity, With<OrbitCamera>>,
+    mut commands: Commands,
+    mut done: Local<bool>,
+) {
+    if *done {
+        return;
+    }
+    let Some(adapter) = adapter else {
+        return;
+    };
+    *done = true;
+    if format!("{:?}", adapter.device_type) == "Cpu" {
+        info!("software renderer ({}): MSAA off", adapter.name);
+        for camera in &cameras {
+            commands.entity(camera).insert(Msaa::Off);
+        }
     }
 }
 
