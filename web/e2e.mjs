@@ -561,10 +561,39 @@ async function main() {
   timings.bonds_broken_after_first_click = hit.at - tFire;
   log('broken:', JSON.stringify(hit.state));
 
+  // 4. "Add mesh…": a picked OBJ reaches the app (its add_mesh export parses it), a
+  //    broken one is refused with the parser's message.
+  const meshStatus = async () =>
+    page.evaluate(() => document.getElementById('shatter-mesh-status').textContent);
+  const pick = async (name, text) => {
+    await page.setInputFiles('#shatter-mesh-file', {
+      name,
+      mimeType: 'text/plain',
+      buffer: Buffer.from(text),
+    });
+    const until = Date.now() + 60000;
+    const before = await meshStatus();
+    while (Date.now() < until) {
+      const now = await meshStatus();
+      if (now !== before) return now;
+      await sleep(250);
+    }
+    return before;
+  };
+  const tet = 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n';
+  const good = await pick('tet.obj', tet);
+  if (!good.includes('tet.obj added')) failures.push(`Add mesh: a good OBJ gave "${good}"`);
+  const bad = await pick('bad.obj', 'v 0 0 0\nf 1 2 9\n');
+  if (!bad.includes('bad.obj') || bad.includes('added')) {
+    failures.push(`Add mesh: a broken OBJ gave "${bad}"`);
+  }
+  log('add mesh:', good, '|', bad);
+  if (failures.length) return finish(false);
+
   // Let the debris fly for a moment, then take the final state + screenshot.
   await sleep(2000);
   checkFatal('after bonds broke');
-  return finish(true, { clicks, extra_enters: extraEnters });
+  return finish(true, { clicks, extra_enters: extraEnters, add_mesh: { good, bad } });
 }
 
 main().catch((e) => {

@@ -13,6 +13,22 @@ use shatter_app::ShatterAppPlugin;
 
 const USAGE: &str = "usage: shatter-app [--autotest DIR]";
 
+/// Called by the web page (web/index.html) with a mesh file the user picked: the Custom
+/// shape of the Add Object and Fire panels can then name it. Returns an error message,
+/// or an empty string when the file reads as a mesh.
+#[cfg(target_arch = "wasm32")]
+#[wasm_bindgen::prelude::wasm_bindgen]
+pub fn add_mesh(name: String, bytes: Vec<u8>) -> String {
+    let Some(format) = shatter_geom::io::MeshFormat::from_path(&name) else {
+        return format!("'{name}': expected an .obj, .stl, .gltf or .glb file");
+    };
+    if let Err(e) = shatter_geom::io::parse_mesh(&bytes, format, &name) {
+        return e.to_string();
+    }
+    shatter_geom::io::add_memory_file(&name, bytes);
+    String::new()
+}
+
 fn parse_args(args: &[String]) -> Result<Option<PathBuf>, String> {
     let mut autotest = None;
     let mut it = args.iter();

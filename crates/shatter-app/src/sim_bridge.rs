@@ -429,10 +429,18 @@ pub fn check_custom_mesh(path: &Path) -> Result<(), String> {
             ));
         }
     }
-    let meta =
-        std::fs::metadata(path).map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
-    if !meta.is_file() {
-        return Err(format!("'{}' is not a file", path.display()));
+    // A mesh picked in the web page lives in memory (shatter_geom::io::add_memory_file).
+    if shatter_geom::io::memory_file(path).is_none() {
+        let meta = std::fs::metadata(path).map_err(|e| {
+            if cfg!(target_arch = "wasm32") {
+                format!("no mesh '{}': add it with the page's \"Add mesh…\" button", path.display())
+            } else {
+                format!("cannot read '{}': {e}", path.display())
+            }
+        })?;
+        if !meta.is_file() {
+            return Err(format!("'{}' is not a file", path.display()));
+        }
     }
     let mesh = shatter_geom::io::load_mesh(path).map_err(|e| e.to_string())?;
     if mesh.triangles.is_empty() {

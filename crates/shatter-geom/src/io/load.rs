@@ -46,6 +46,8 @@ impl MeshFormat {
 /// validated as a solid: call [`TriMesh::validate_solid`] for that.
 ///
 /// Errors name the file and the problem, and for OBJ the line where it can be located.
+/// A file registered with [`add_memory_file`](super::add_memory_file) under this name is
+/// read from memory instead of the file system.
 ///
 /// ```
 /// use shatter_geom::{io, shapes};
@@ -64,6 +66,9 @@ pub fn load_mesh(path: impl AsRef<Path>) -> Result<TriMesh, MeshIoError> {
     let format = MeshFormat::from_path(path).ok_or_else(|| MeshIoError::UnknownFormat {
         path: path.to_path_buf(),
     })?;
+    if let Some(bytes) = super::memory_file(path) {
+        return parse(&bytes, format, path, None);
+    }
     let bytes = std::fs::read(path).map_err(|e| MeshIoError::io(path, e))?;
     let base = path.parent().map(|p| {
         if p.as_os_str().is_empty() {

@@ -1,7 +1,8 @@
 //! Mesh file import and export.
 //!
 //! Import: [`load_mesh`] reads OBJ (`tobj`), STL ASCII and binary (`stl_io`) and glTF /
-//! GLB (`gltf`), dispatching on the extension; [`parse_mesh`] reads from memory.
+//! GLB (`gltf`), dispatching on the extension; [`parse_mesh`] reads from memory, and
+//! [`add_memory_file`] registers named in-memory files that [`load_mesh`] reads first.
 //! Export: [`write_obj`] / [`save_obj`] (with an MTL file), [`write_glb`] /
 //! [`save_glb`] and [`write_stl`] / [`save_stl`]. OBJ and GLB exports take
 //! [`ExportObject`]s, whose triangles are flagged surface or interior and get the
@@ -23,6 +24,7 @@ mod export;
 mod glb_write;
 mod gltf_read;
 mod load;
+mod memory_files;
 mod obj_read;
 mod obj_write;
 mod stl;
@@ -33,5 +35,6 @@ pub use export::{
 };
 pub use glb_write::{save_glb, write_glb};
 pub use load::{MeshFormat, load_mesh, parse_mesh};
+pub use memory_files::{add_memory_file, memory_file, memory_file_names, remove_memory_file};
 pub use obj_write::{save_obj, write_mtl, write_obj};
 pub use stl::{StlFormat, save_stl, write_stl};
