@@ -433,7 +433,10 @@ pub fn check_custom_mesh(path: &Path) -> Result<(), String> {
     if shatter_geom::io::memory_file(path).is_none() {
         let meta = std::fs::metadata(path).map_err(|e| {
             if cfg!(target_arch = "wasm32") {
-                format!("no mesh '{}': add it with the page's \"Add mesh…\" button", path.display())
+                format!(
+                    "no mesh '{}': add it with the page's \"Add mesh…\" button",
+                    path.display()
+                )
             } else {
                 format!("cannot read '{}': {e}", path.display())
             }
