@@ -6,7 +6,6 @@
 //! overlay. The conversions between the panels' [`ObjectSpec`] and the simulation's own
 //! spec live in [`crate::spec_convert`].
 
-use std::collections::BTreeMap;
 use std::path::Path;
 
 use bevy::prelude::{Quat, Resource, Vec3};
@@ -115,11 +114,9 @@ impl SimBridge {
         }
     }
 
-    /// The default scene (`assets/scenes/default.toml`): a brick wall, the bird, a glass
-    /// pane and a crate on the ground.
-    ///
-    /// # Panics
-    /// Never for the bundled scene; it is checked by this crate's tests.
+    /// The default scene (`assets/scenes/default.toml`, embedded): a brick wall, the bird,
+    /// a glass pane and a crate on the ground. Should the bundled file ever fail to build
+    /// (this crate's tests check it does not), the error is logged and the world is empty.
     pub fn default_scene() -> Self {
         Self::from_scene_text(DEFAULT_SCENE).unwrap_or_else(|e| {
             bevy::log::error!("default scene: {e}");
@@ -450,17 +447,4 @@ pub fn check_custom_mesh(path: &Path) -> Result<(), String> {
         return Err(format!("'{}' has no triangles", path.display()));
     }
     Ok(())
-}
-
-/// The scene objects' ids in order (for scripted sessions).
-pub fn object_ids(bridge: &SimBridge) -> BTreeMap<ObjectId, String> {
-    bridge
-        .world
-        .object_ids()
-        .into_iter()
-        .filter_map(|id| {
-            let spec = bridge.world.object_spec(id)?;
-            Some((u64::from(id.0), spec.name.clone()))
-        })
-        .collect()
 }
