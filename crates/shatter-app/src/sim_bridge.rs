@@ -330,11 +330,8 @@ impl SimBridge {
             let index = (key.object & !PROJECTILE_BIT) as usize;
             let views = self.world.projectiles();
             let view = views.iter().find(|v| v.index == index)?;
-            return Some(projectile_mesh(
-                &view.spec.shape,
-                view.spec.size,
-                view.spec.color,
-            ));
+            let mesh = view.spec.shape.mesh(view.spec.size);
+            return Some(flat_trimesh(&mesh, &[], view.spec.color));
         }
         let id = shatter_sim::ObjectId(u32::try_from(key.object).ok()?);
         let fracture = self.world.object_fracture(id)?;
@@ -379,52 +376,14 @@ fn sim_id(id: ObjectId) -> Result<shatter_sim::ObjectId, String> {
         .map_err(|_| format!("no object {id}"))
 }
 
-/// A projectile's mesh, matching its collider (see [`shatter_sim::ProjectileShape`]):
-/// the shape's axis is `+y`, which the simulation turns along the flight direction.
-pub fn projectile_mesh(shape: &ProjectileShape, size: f32, color: [f32; 3]) -> FlatMesh {
-    use shatter_geom::TriMesh;
-    let s = f64::from(size);
-    let mesh: TriMesh = match shape {
-        ProjectileShape::Cube => {
-            shatter_geom::shapes::cube().transformed(glam::DVec3::splat(s), glam::DVec3::ZERO)
-        }
-        ProjectileShape::Sphere => shatter_geom::shapes::sphere(16, 10)
-            .transformed(glam::DVec3::splat(s), glam::DVec3::ZERO),
-        // Unity's capsule and cylinder are 2 tall and 1 wide.
-        ProjectileShape::Capsule => shatter_geom::shapes::capsule().transformed(
-            glam::DVec3::new(s / 2.0, s / 2.0, s / 2.0),
-            glam::DVec3::ZERO,
-        ),
-        ProjectileShape::Cylinder => shatter_geom::shapes::cylinder()
-            .transformed(glam::DVec3::new(s, s / 2.0, s), glam::DVec3::ZERO),
-        ProjectileShape::Custom(points) => {
-            // The collider is the points' convex hull: draw the same hull.
-            let scaled: Vec<glam::DVec3> = points.iter().map(|p| *p * s).collect();
-            match shatter_geom::delaunay::tetrahedralize(&scaled) {
-                Ok(t) => TriMesh::new(scaled, t.hull_faces()),
-                Err(_) => shatter_geom::shapes::sphere(12, 8)
-                    .transformed(glam::DVec3::splat(s), glam::DVec3::ZERO),
-            }
-        }
-    };
-    flat_trimesh(&mesh, &[], color)
-}
-
 /// Whether a custom mesh file can be used (for the forms' validation): the extension is a
 /// mesh format, and the file reads as a mesh.
 pub fn check_custom_mesh(path: &Path) -> Result<(), String> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match ext.as_deref() {
-        Some("obj" | "stl" | "glb" | "gltf") => {}
-        _ => {
-            return Err(format!(
-                "'{}': expected an .obj, .stl, .gltf or .glb file",
-                path.display()
-            ));
-        }
+    if shatter_geom::io::MeshFormat::from_path(path).is_none() {
+        return Err(format!(
+            "'{}': expected an .obj, .stl, .gltf or .glb file",
+            path.display()
+        ));
     }
     // A mesh picked in the web page lives in memory (shatter_geom::io::add_memory_file).
     if shatter_geom::io::memory_file(path).is_none() {

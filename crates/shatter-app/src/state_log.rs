@@ -34,19 +34,13 @@ impl Plugin for StateLogPlugin {
     }
 }
 
-/// The line for a state and a frame count.
+/// The line for a state and a frame count: every [`SimStats`](crate::sim_bridge::SimStats)
+/// field, plus `frames`.
 pub fn state_line(bridge: &SimBridge, frames: u64) -> String {
-    let s = bridge.stats();
-    let value = json!({
-        "frames": frames,
-        "bodies": s.bodies,
-        "fragments": s.fragments,
-        "bonds_total": s.bonds_total,
-        "bonds_broken": s.bonds_broken,
-        "time": s.time,
-        "running": s.running,
-        "step_ms": s.step_ms,
-    });
+    let mut value = serde_json::to_value(bridge.stats()).unwrap_or_else(|_| json!({}));
+    if let Some(map) = value.as_object_mut() {
+        map.insert("frames".to_owned(), json!(frames));
+    }
     format!("SHATTER_STATE {value}")
 }
 

@@ -8,11 +8,11 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::{Args, ValueEnum};
-use shatter_geom::{DVec3, TriMesh, shapes};
+use shatter_geom::TriMesh;
 use shatter_report::export::{FragmentMesh, Pose as KeyPose};
 use shatter_report::record::{RunRecorder, StepStats};
 use shatter_sim::scene::Scene;
-use shatter_sim::{BondModel, ObjectId, Pose, ProjectileShape, ProjectileSpec, World};
+use shatter_sim::{BondModel, ObjectId, Pose, ProjectileSpec, World};
 
 use crate::args::check_writable;
 
@@ -421,43 +421,17 @@ fn fragment_mesh(name: String, mesh: &TriMesh, colour: [f32; 3]) -> FragmentMesh
     )
 }
 
-/// The projectile's shape as a mesh in its body's frame (the axis of a capsule or
-/// cylinder along `y`), sized like its collider. A custom convex shape is drawn as its
-/// bounding box.
+/// The projectile's shape as a mesh in its body's frame, sized like its collider.
 fn projectile_mesh(name: String, spec: &ProjectileSpec) -> FragmentMesh {
-    let s = f64::from(spec.size);
-    let mesh = match &spec.shape {
-        ProjectileShape::Cube => shapes::cube().transformed(DVec3::splat(s), DVec3::ZERO),
-        // Radius 0.5: diameter `size`.
-        ProjectileShape::Sphere => shapes::sphere(16, 8).transformed(DVec3::splat(s), DVec3::ZERO),
-        // Height 2, radius 0.5: height `size`, radius `size / 4`.
-        ProjectileShape::Capsule => {
-            shapes::capsule().transformed(DVec3::splat(s / 2.0), DVec3::ZERO)
-        }
-        // Height 2, radius 0.5: height and diameter `size`.
-        ProjectileShape::Cylinder => {
-            shapes::cylinder().transformed(DVec3::new(s, s / 2.0, s), DVec3::ZERO)
-        }
-        ProjectileShape::Custom(points) => {
-            let lo = points.iter().fold(DVec3::INFINITY, |a, &p| a.min(p * s));
-            let hi = points
-                .iter()
-                .fold(DVec3::NEG_INFINITY, |a, &p| a.max(p * s));
-            let size = (hi - lo).max(DVec3::splat(1e-3));
-            if size.is_finite() && lo.is_finite() {
-                shapes::cube().transformed(size, (lo + hi) / 2.0)
-            } else {
-                shapes::sphere(16, 8).transformed(DVec3::splat(s), DVec3::ZERO)
-            }
-        }
-    };
-    fragment_mesh(name, &mesh, spec.color)
+    fragment_mesh(name, &spec.shape.mesh(spec.size), spec.color)
 }
 
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used)]
     use super::*;
+    use shatter_geom::DVec3;
+    use shatter_sim::ProjectileShape;
 
     fn args(dir: &Path) -> SimulateArgs {
         SimulateArgs {

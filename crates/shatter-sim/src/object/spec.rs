@@ -3,8 +3,8 @@
 use std::sync::Arc;
 
 use glam::{Quat, Vec3};
-use shatter_geom::DVec3;
 use shatter_geom::fracture::Fracture;
+use shatter_geom::{DVec3, TriMesh, shapes};
 
 use crate::error::SimError;
 use crate::material::{FractureMethod, Material, Pattern};
@@ -231,6 +231,50 @@ pub enum ProjectileShape {
 }
 
 impl ProjectileShape {
+    /// A closed mesh of this shape at `size`, in the projectile body's frame (a capsule's
+    /// or cylinder's axis along `+y`, as the body is turned along the flight), matching
+    /// its collider: for renderers and exports. A custom shape is the points' convex hull,
+    /// or their bounding box when they span no volume.
+    ///
+    /// ```
+    /// use shatter_sim::ProjectileShape;
+    /// let (lo, hi) = ProjectileShape::Capsule.mesh(0.4).bounds().expect("vertices");
+    /// assert!(((hi - lo).y - 0.4).abs() < 1e-3); // total height `size`
+    /// assert!(((hi - lo).x - 0.2).abs() < 1e-3); // radius `size / 4`
+    /// ```
+    pub fn mesh(&self, size: f32) -> TriMesh {
+        let s = f64::from(size);
+        match self {
+            ProjectileShape::Cube => shapes::cube().transformed(DVec3::splat(s), DVec3::ZERO),
+            // Radius 0.5: diameter `size`.
+            ProjectileShape::Sphere => {
+                shapes::sphere(16, 8).transformed(DVec3::splat(s), DVec3::ZERO)
+            }
+            // Unity's capsule and cylinder are 2 tall and 1 wide: a capsule of height `size`
+            // and radius `size / 4`; a cylinder of height and diameter `size`.
+            ProjectileShape::Capsule => {
+                shapes::capsule().transformed(DVec3::splat(s / 2.0), DVec3::ZERO)
+            }
+            ProjectileShape::Cylinder => {
+                shapes::cylinder().transformed(DVec3::new(s, s / 2.0, s), DVec3::ZERO)
+            }
+            ProjectileShape::Custom(points) => {
+                let scaled: Vec<DVec3> = points.iter().map(|p| *p * s).collect();
+                if let Ok(t) = shatter_geom::delaunay::tetrahedralize(&scaled) {
+                    return TriMesh::new(scaled, t.hull_faces());
+                }
+                let lo = scaled.iter().fold(DVec3::INFINITY, |a, &p| a.min(p));
+                let hi = scaled.iter().fold(DVec3::NEG_INFINITY, |a, &p| a.max(p));
+                if lo.is_finite() && hi.is_finite() {
+                    let extent = (hi - lo).max(DVec3::splat(1e-3));
+                    shapes::cube().transformed(extent, (lo + hi) / 2.0)
+                } else {
+                    shapes::sphere(16, 8).transformed(DVec3::splat(s), DVec3::ZERO)
+                }
+            }
+        }
+    }
+
     /// Parses `cube`, `sphere`, `capsule`, `cylinder` (custom meshes come with points).
     pub fn from_name(name: &str) -> Option<ProjectileShape> {
         match name {
