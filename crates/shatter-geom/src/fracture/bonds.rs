@@ -67,7 +67,17 @@ pub(crate) fn cap_bonds(
                 if ba.0.cmpgt(bb.1).any() || bb.0.cmpgt(ba.1).any() {
                     continue;
                 }
-                let (area, c2) = overlap(ta, tb);
+                let (area, c2) = if front.len() == 1 && back.len() == 1 {
+                    // One fragment on each side: both caps are the whole section of the
+                    // solid by this plane (the fronts' caps together cover it, and so
+                    // do the backs'), so the overlap is either cap; the smaller area
+                    // of the two (equal up to rounding) and the front's centroid.
+                    let (aa, ca) = triangles_area_centroid(ta);
+                    let (ab, _) = triangles_area_centroid(tb);
+                    (aa.min(ab), ca)
+                } else {
+                    overlap(ta, tb)
+                };
                 if area <= min_area {
                     continue;
                 }
@@ -116,6 +126,22 @@ fn overlap(a: &[[DVec2; 3]], b: &[[DVec2; 3]]) -> (f64, DVec2) {
             area += ar;
             moment += c * ar;
         }
+    }
+    if area > 0.0 {
+        (area, moment / area)
+    } else {
+        (0.0, DVec2::ZERO)
+    }
+}
+
+/// Total area and centroid of 2D triangles that do not overlap (either winding).
+fn triangles_area_centroid(tris: &[[DVec2; 3]]) -> (f64, DVec2) {
+    let mut area = 0.0;
+    let mut moment = DVec2::ZERO;
+    for [a, b, c] in tris {
+        let ar = ((*b - *a).perp_dot(*c - *a) * 0.5).abs();
+        area += ar;
+        moment += (*a + *b + *c) / 3.0 * ar;
     }
     if area > 0.0 {
         (area, moment / area)

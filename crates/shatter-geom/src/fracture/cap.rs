@@ -27,10 +27,13 @@ pub(crate) fn plane_frame(n: DVec3) -> (DVec3, DVec3) {
 /// on `plane`). Returns triangles wound so their normal points along `plane.n` (out of
 /// the kept side), each with its tag.
 ///
-/// Uses spade's constrained Delaunay triangulation in the plane's 2D frame; the inside
-/// is found by parity of the constraint edges crossed from the outside. Spade is exact
-/// (robust predicates), so loops that touch at a vertex and nested loops (holes, islands
-/// in holes) come out right.
+/// Both paths give the constrained Delaunay triangulation of the cap in the plane's 2D
+/// frame, with exact predicates. The common cap, one simple loop, is cut into ears and
+/// flipped to Delaunay (see [`ear_clip`]); that is several times faster than building a
+/// CDT with spade, which a cap of tens of vertices needs about 20 µs for. Anything else
+/// goes to spade's CDT, the inside found by parity of the constraint edges crossed from
+/// the outside, so loops that touch at a vertex and nested loops (holes, islands in
+/// holes) come out right.
 pub(crate) fn triangulate_cap(
     pos: &[DVec3],
     boundary: &[(u32, u32)],
@@ -44,8 +47,8 @@ pub(crate) fn triangulate_cap(
         DVec2::new(q.dot(u), q.dot(v))
     };
 
-    if let Some(fan) = convex_fan(pos, boundary, &to2) {
-        return fan
+    if let Some(ears) = ear_clip(pos, boundary, &to2) {
+        return ears
             .into_iter()
             .map(|ids| {
                 let c = ids.iter().map(|&i| to2(pos[i as usize])).sum::<DVec2>() / 3.0;
@@ -162,10 +165,19 @@ fn covering_tag(c: DVec2, tag: u64, coverings: &[Covering], to2: &impl Fn(DVec3)
     tag
 }
 
-/// Fast path for the common cap: a single boundary loop whose reverse is a convex
-/// polygon (decided exactly with `orient2d`), triangulated as a fan. `None` when the
-/// boundary is anything else (several loops, holes, shared vertices, a concave loop).
-fn convex_fan(
+/// Fast path for the common cap: one boundary loop without repeated points, reversed to
+/// run counter-clockwise in the plane's frame and cut into ears. `None` when the
+/// boundary is anything else (several loops, holes, loops touching at a point) or when
+/// no ear is left (a degenerate loop): the caller then falls back to the CDT.
+///
+/// An ear is a strictly convex corner (exact `orient2d`) whose triangle has no other
+/// loop vertex inside or on it; only reflex and straight corners can lie there, so only
+/// they are tested, and a convex loop costs one orientation test per corner. Corners
+/// turning by less than ~1e-9 rad (straight up to the rounding of the 2D projection)
+/// are taken as ears only when no clearly convex one is left, so flat triangles are
+/// avoided where the loop allows it. The loops here have tens of vertices, for which
+/// this O(n²) worst case is faster than building a CDT.
+fn ear_clip(
     pos: &[DVec3],
     boundary: &[(u32, u32)],
     to2: &impl Fn(DVec3) -> DVec2,
@@ -209,7 +221,8 @@ fn convex_fan(
     // The cap runs the loop backwards, counter-clockwise in the plane's frame.
     lp.reverse();
     let p: Vec<DVec2> = lp.iter().map(|&i| to2(pos[i as usize])).collect();
-    let orient = |a: DVec2, b: DVec2, c: DVec2| {
+    let orient = |a: usize, b: usize, c: usize| {
+        let (a, b, c) = (p[a], p[b], p[c]);
         robust::orient2d(
             robust::Coord { x: a.x, y: a.y },
             robust::Coord { x: b.x, y: b.y },
@@ -218,30 +231,154 @@ fn convex_fan(
     };
     let mut area2 = 0.0;
     for i in 0..n {
-        let (a, b, c) = (p[i], p[(i + 1) % n], p[(i + 2) % n]);
-
-        if orient(a, b, c) < 0.0 {
-            return None;
-        }
-        area2 += a.perp_dot(b);
+        area2 += p[i].perp_dot(p[(i + 1) % n]);
     }
     if area2 <= 0.0 {
         return None;
     }
-    // Fan from a vertex where the polygon and both its neighbours turn strictly: then
-    // no fan triangle is flat (collinear vertices lie only on sides away from the apex).
-    // "Strictly" with a margin: a turn of less than ~1e-9 rad counts as straight, as
-    // the 2D projection of collinear 3D points is only collinear up to rounding.
-    let strict: Vec<bool> = (0..n)
-        .map(|i| {
-            let (a, b, c) = (p[(i + n - 1) % n], p[i], p[(i + 1) % n]);
-            orient(a, b, c) > 1e-9 * (b - a).length() * (c - b).length()
-        })
-        .collect();
-    let apex = (0..n).find(|&i| strict[(i + n - 1) % n] && strict[i] && strict[(i + 1) % n])?;
-    Some(
-        (1..n - 1)
-            .map(|k| [lp[apex], lp[(apex + k) % n], lp[(apex + k + 1) % n]])
-            .collect(),
-    )
+    let mut prev: Vec<usize> = (0..n).map(|i| (i + n - 1) % n).collect();
+    let mut nxt: Vec<usize> = (0..n).map(|i| (i + 1) % n).collect();
+    // Turn at each live corner (exact sign; the magnitude only ranks flat corners).
+    let turn = |i: usize, prev: &[usize], nxt: &[usize]| orient(prev[i], i, nxt[i]);
+    let mut reflex: Vec<usize> = (0..n).filter(|&i| turn(i, &prev, &nxt) <= 0.0).collect();
+    let mut alive = vec![true; n];
+    let mut out = Vec::with_capacity(n - 2);
+    let mut left = n;
+    let mut cur = 0;
+    while left > 3 {
+        let mut found = None;
+        for strict in [true, false] {
+            let mut i = cur;
+            for _ in 0..left {
+                let (a, c) = (prev[i], nxt[i]);
+                let t = turn(i, &prev, &nxt);
+                let margin = if strict {
+                    1e-9 * (p[i] - p[a]).length() * (p[c] - p[i]).length()
+                } else {
+                    0.0
+                };
+                if t > margin
+                    && !reflex.iter().any(|&r| {
+                        r != a
+                            && r != i
+                            && r != c
+                            && orient(a, i, r) >= 0.0
+                            && orient(i, c, r) >= 0.0
+                            && orient(c, a, r) >= 0.0
+                    })
+                {
+                    found = Some(i);
+                    break;
+                }
+                i = nxt[i];
+            }
+            if found.is_some() {
+                break;
+            }
+        }
+        let i = found?;
+        let (a, c) = (prev[i], nxt[i]);
+        out.push([a, i, c]);
+        alive[i] = false;
+        nxt[a] = c;
+        prev[c] = a;
+        left -= 1;
+        // The neighbours' turns changed; a reflex corner may have become convex.
+        reflex.retain(|&r| alive[r] && (r != a && r != c || turn(r, &prev, &nxt) <= 0.0));
+        // Go on past the new corner rather than at it: consecutive ears then go round
+        // the loop instead of fanning from one vertex, a better start for the flips.
+        cur = nxt[c];
+    }
+    let a = cur;
+    let (b, c) = (nxt[a], nxt[nxt[a]]);
+    if orient(a, b, c) <= 0.0 {
+        return None;
+    }
+    out.push([a, b, c]);
+    delaunay_flips(&p, &mut out);
+    Some(out.into_iter().map(|t| t.map(|k| lp[k])).collect())
+}
+
+/// Lawson's flips: turns a triangulation of a polygon into its constrained Delaunay
+/// triangulation by flipping every interior edge whose opposite vertex lies inside the
+/// circumcircle (exact `incircle`), until none does. Boundary edges are never flipped.
+/// Triangles are counter-clockwise, as indices into `p`.
+///
+/// The ears alone are long fans; later cuts would cross many of them and multiply the
+/// cap's vertices, which the well-shaped Delaunay triangles avoid.
+fn delaunay_flips(p: &[DVec2], tris: &mut [[usize; 3]]) {
+    const NONE: usize = usize::MAX;
+    let coord = |i: usize| robust::Coord {
+        x: p[i].x,
+        y: p[i].y,
+    };
+    // nbr[t][k]: the triangle across edge k (tri[k] -> tri[k + 1]) of triangle t.
+    let mut nbr = vec![[NONE; 3]; tris.len()];
+    {
+        let mut owner: FastMap<(usize, usize), (usize, usize)> = FastMap::default();
+        owner.reserve(tris.len() * 3);
+        for (t, tri) in tris.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                if let Some(&(u, j)) = owner.get(&(b, a)) {
+                    nbr[t][k] = u;
+                    nbr[u][j] = t;
+                } else {
+                    owner.insert((a, b), (t, k));
+                }
+            }
+        }
+    }
+    let mut stack: Vec<(usize, usize)> = Vec::with_capacity(tris.len() * 3);
+    for (t, nb) in nbr.iter().enumerate() {
+        for (k, &u) in nb.iter().enumerate() {
+            if u != NONE && t < u {
+                stack.push((t, k));
+            }
+        }
+    }
+    // Each flip strictly increases the triangulation's angle vector; the bound only
+    // guards against the unexpected (incircle is exact, so it is never reached).
+    let mut budget = 16 * tris.len() * tris.len() + 64;
+    while let Some((t1, k1)) = stack.pop() {
+        let t2 = nbr[t1][k1];
+        if t2 == NONE {
+            continue;
+        }
+        // t1 = a b c with edge a -> b at k1; t2 has b -> a at k2, third vertex d.
+        let (a, b, c) = (tris[t1][k1], tris[t1][(k1 + 1) % 3], tris[t1][(k1 + 2) % 3]);
+        let Some(k2) = (0..3).find(|&k| tris[t2][k] == b && tris[t2][(k + 1) % 3] == a) else {
+            continue;
+        };
+        let d = tris[t2][(k2 + 2) % 3];
+        if robust::incircle(coord(a), coord(b), coord(c), coord(d)) <= 0.0 {
+            continue;
+        }
+        if budget == 0 {
+            break;
+        }
+        budget -= 1;
+        // Outer neighbours: across b -> c and c -> a in t1, a -> d and d -> b in t2.
+        let n_bc = nbr[t1][(k1 + 1) % 3];
+        let n_ca = nbr[t1][(k1 + 2) % 3];
+        let n_ad = nbr[t2][(k2 + 1) % 3];
+        let n_db = nbr[t2][(k2 + 2) % 3];
+        // New t1 = a d c (edges a->d, d->c, c->a), new t2 = d b c (d->b, b->c, c->d).
+        tris[t1] = [a, d, c];
+        tris[t2] = [d, b, c];
+        nbr[t1] = [n_ad, t2, n_ca];
+        nbr[t2] = [n_db, n_bc, t1];
+        let mut relink = |u: usize, old: usize, new: usize| {
+            if u != NONE {
+                for slot in &mut nbr[u] {
+                    if *slot == old {
+                        *slot = new;
+                    }
+                }
+            }
+        };
+        relink(n_ad, t2, t1);
+        relink(n_bc, t1, t2);
+        stack.extend([(t1, 0), (t1, 2), (t2, 0), (t2, 1)]);
+    }
 }

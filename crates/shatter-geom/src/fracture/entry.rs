@@ -3,6 +3,7 @@
 use glam::DVec3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
 
 use super::convex::convex_pieces;
 use super::massprops::mass_properties;
@@ -156,14 +157,15 @@ fn finish_cut(
             "{lonely} fragments below the sliver threshold had no neighbour to merge into"
         ));
     }
-    let pieces: Vec<Piece> = pieces
-        .into_iter()
+    // Independent per fragment, so in parallel (order kept).
+    let fragments = pieces
+        .into_par_iter()
         .map(|mut p| {
             p.weld();
-            p
+            fragment(&p)
         })
         .collect();
-    (pieces.iter().map(fragment).collect(), bonds)
+    (fragments, bonds)
 }
 
 /// A fragment from a closed cut piece.

@@ -2,6 +2,7 @@
 //! exactly against the mesh, one fragment per connected component.
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use super::bonds::cap_bonds;
 use super::clip::{Plane, clip};
@@ -12,11 +13,11 @@ use super::types::Bond;
 /// (`|x|² = Σ metricᵢ xᵢ²`; all ones for the Euclidean distance). Returns the fragments
 /// (cells in seed order, components in order) and their bonds.
 ///
-/// A cell is cut only by the bisectors that can reach it: the other seeds are visited
-/// by increasing distance and the loop stops once a seed is more than twice the cell's
-/// current radius away (no point of the cell can be closer to it), so a cell costs
-/// about as many cuts as it has faces. Duplicate seeds are ignored after their first
-/// occurrence.
+/// A cell is cut only by the bisectors of its Delaunay neighbours (see
+/// [`delaunay_neighbours`]), nearest first, so a cell costs about as many cuts as it has
+/// faces. The cells are independent and are cut in parallel (rayon; one thread where
+/// there are no threads, as in the browser); the result does not depend on the number
+/// of threads. Duplicate seeds are ignored after their first occurrence.
 pub(crate) fn voronoi(
     mesh: &Piece,
     seeds: &[DVec3],
@@ -24,7 +25,6 @@ pub(crate) fn voronoi(
     eps: f64,
 ) -> (Vec<Piece>, Vec<Bond>) {
     let k = seeds.len() as u64;
-    let dist2 = |a: DVec3, b: DVec3| ((a - b) * (a - b)).dot(metric);
     let bisector = |i: usize, j: usize| {
         let (si, sj) = (seeds[i], seeds[j]);
         let n = (sj - si) * metric;
@@ -32,65 +32,36 @@ pub(crate) fn voronoi(
         let tag = (i.min(j) as u64) * k + i.max(j) as u64;
         Plane { n, d, tag }
     };
+    let neighbours = delaunay_neighbours(seeds, metric);
     let bounding_box = box_piece(mesh);
-    let mut cells = Vec::new();
-    let mut order: Vec<(f64, usize)> = Vec::with_capacity(seeds.len());
-    'seeds: for i in 0..seeds.len() {
-        let si = seeds[i];
-        order.clear();
-        for (j, &sj) in seeds.iter().enumerate() {
-            if j == i {
-                continue;
-            }
-            let d2 = dist2(si, sj);
-            if d2 == 0.0 {
-                if j < i {
-                    // A duplicate of an earlier seed: that seed's cell is this one.
-                    continue 'seeds;
+    let per_seed: Vec<Vec<Piece>> = (0..seeds.len())
+        .into_par_iter()
+        .map(|i| {
+            let Some(planes) = cell_planes(
+                i,
+                seeds,
+                metric,
+                neighbours.as_ref(),
+                &bounding_box,
+                &bisector,
+                eps,
+            ) else {
+                return Vec::new();
+            };
+            let mut cell: Option<Piece> = None;
+            for plane in &planes {
+                let current = cell.as_ref().unwrap_or(mesh);
+                if let Some(next) = clip(current, plane, eps) {
+                    if next.is_empty() {
+                        return Vec::new();
+                    }
+                    cell = Some(next);
                 }
-                continue;
             }
-            order.push((d2, j));
-        }
-        order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let radius2 = |p: &Piece| p.pos.iter().map(|&x| dist2(x, si)).fold(0.0, f64::max);
-        // First the convex cell itself, clipped from the mesh's bounding box (a dozen
-        // triangles, so cheap): only the bisectors that end up as its faces need to
-        // cut the mesh, which saves the cuts a later plane would make redundant.
-        let mut poly = bounding_box.clone();
-        let mut r2 = radius2(&poly);
-        for &(d2, j) in &order {
-            if d2 > 4.0 * r2 {
-                break;
-            }
-            if let Some(next) = clip(&poly, &bisector(i, j), eps) {
-                if next.is_empty() {
-                    continue 'seeds;
-                }
-                r2 = radius2(&next);
-                poly = next;
-            }
-        }
-        let mut faces: Vec<u64> = poly.tags.clone();
-        faces.sort_unstable();
-        faces.dedup();
-        let mut cell: Option<Piece> = None;
-        for &(_, j) in &order {
-            let plane = bisector(i, j);
-            if faces.binary_search(&plane.tag).is_err() {
-                continue;
-            }
-            let current = cell.as_ref().unwrap_or(mesh);
-            if let Some(next) = clip(current, &plane, eps) {
-                if next.is_empty() {
-                    continue 'seeds;
-                }
-                cell = Some(next);
-            }
-        }
-        let piece = cell.unwrap_or_else(|| mesh.clone());
-        cells.extend(piece.components());
-    }
+            cell.unwrap_or_else(|| mesh.clone()).components()
+        })
+        .collect();
+    let cells: Vec<Piece> = per_seed.into_iter().flatten().collect();
     let plane_of = |tag: u64| {
         let (i, j) = ((tag / k) as usize, (tag % k) as usize);
         let p = bisector(i, j);
@@ -100,6 +71,124 @@ pub(crate) fn voronoi(
     let scale = mesh_scale(mesh);
     let bonds = cap_bonds(&cells, plane_of, 1e-12 * scale * scale);
     (cells, bonds)
+}
+
+/// The planes that bound seed `i`'s cell, nearest first; `None` when the seed repeats
+/// an earlier one (whose cell it shares) or its cell is empty.
+fn cell_planes(
+    i: usize,
+    seeds: &[DVec3],
+    metric: DVec3,
+    neighbours: Option<&(Vec<Vec<u32>>, Vec<u32>)>,
+    bounding_box: &Piece,
+    bisector: &impl Fn(usize, usize) -> Plane,
+    eps: f64,
+) -> Option<Vec<Plane>> {
+    let si = seeds[i];
+    let dist2 = |a: DVec3, b: DVec3| ((a - b) * (a - b)).dot(metric);
+    let by_distance = |order: &mut Vec<(f64, usize)>| {
+        order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    };
+    let mut order: Vec<(f64, usize)>;
+    if let Some((adjacent, representative)) = neighbours {
+        if representative[i] as usize != i {
+            return None;
+        }
+        order = adjacent[i]
+            .iter()
+            .map(|&j| (dist2(si, seeds[j as usize]), j as usize))
+            .collect();
+        by_distance(&mut order);
+        return Some(order.iter().map(|&(_, j)| bisector(i, j)).collect());
+    }
+    // No tetrahedralization: every other seed is a candidate, and the convex cell,
+    // clipped from the mesh's bounding box (a dozen triangles, so cheap), tells which
+    // bisectors are its faces.
+    order = Vec::with_capacity(seeds.len());
+    for (j, &sj) in seeds.iter().enumerate() {
+        let d2 = dist2(si, sj);
+        if j == i {
+            continue;
+        }
+        if d2 == 0.0 {
+            if j < i {
+                return None;
+            }
+            continue;
+        }
+        order.push((d2, j));
+    }
+    by_distance(&mut order);
+    let radius2 = |p: &Piece| p.pos.iter().map(|&x| dist2(x, si)).fold(0.0, f64::max);
+    let mut faces = cell_faces(bounding_box, &order, bisector, i, &radius2, eps)?;
+    faces.sort_unstable();
+    faces.dedup();
+    Some(
+        order
+            .iter()
+            .map(|&(_, j)| bisector(i, j))
+            .filter(|plane| faces.binary_search(&plane.tag).is_ok())
+            .collect(),
+    )
+}
+
+/// For every seed, the seeds whose Voronoi cells can share a face with its cell (its
+/// neighbours in the Delaunay tetrahedralization of the seeds under `metric`), and every
+/// seed's first occurrence. `None` when the seeds have no tetrahedralization (fewer than
+/// four distinct seeds, or all coplanar): then every other seed is a candidate.
+///
+/// A Voronoi face of positive area lies on the bisector of a Delaunay edge in any
+/// Delaunay tetrahedralization (a point inside the face is the centre of an empty sphere
+/// through exactly its two seeds), so no face is missed; a cospherical configuration may
+/// add a neighbour whose face has no area, whose cut then removes nothing.
+fn delaunay_neighbours(seeds: &[DVec3], metric: DVec3) -> Option<(Vec<Vec<u32>>, Vec<u32>)> {
+    let scale = DVec3::new(metric.x.sqrt(), metric.y.sqrt(), metric.z.sqrt());
+    let scaled: Vec<DVec3> = seeds.iter().map(|&s| s * scale).collect();
+    let t = crate::delaunay::tetrahedralize(&scaled).ok()?;
+    let mut adjacent: Vec<Vec<u32>> = vec![Vec::new(); seeds.len()];
+    for tet in &t.tetrahedra {
+        for a in 0..4 {
+            for b in 0..4 {
+                if a != b {
+                    adjacent[tet[a] as usize].push(tet[b]);
+                }
+            }
+        }
+    }
+    for list in &mut adjacent {
+        list.sort_unstable();
+        list.dedup();
+    }
+    Some((adjacent, t.representative))
+}
+
+/// The tags of the faces of seed `i`'s convex cell, found by clipping the mesh's
+/// bounding box by the bisectors in `order` (by increasing distance; the loop stops once
+/// a seed is more than twice the cell's current radius away, as no point of the cell
+/// can be closer to it). `None` when the cell is empty.
+fn cell_faces(
+    bounding_box: &Piece,
+    order: &[(f64, usize)],
+    bisector: &impl Fn(usize, usize) -> Plane,
+    i: usize,
+    radius2: &impl Fn(&Piece) -> f64,
+    eps: f64,
+) -> Option<Vec<u64>> {
+    let mut poly = bounding_box.clone();
+    let mut r2 = radius2(&poly);
+    for &(d2, j) in order {
+        if d2 > 4.0 * r2 {
+            break;
+        }
+        if let Some(next) = clip(&poly, &bisector(i, j), eps) {
+            if next.is_empty() {
+                return None;
+            }
+            r2 = radius2(&next);
+            poly = next;
+        }
+    }
+    Some(poly.tags)
 }
 
 /// Length of the bounding-box diagonal of a piece (1 for an empty one).
