@@ -177,7 +177,7 @@ fn covering_tag(c: DVec2, tag: u64, coverings: &[Covering], to2: &impl Fn(DVec3)
 /// are taken as ears only when no clearly convex one is left, so flat triangles are
 /// avoided where the loop allows it. The loops here have tens of vertices, for which
 /// this O(n²) worst case is faster than building a CDT.
-fn ear_clip(
+pub(crate) fn ear_clip(
     pos: &[DVec3],
     boundary: &[(u32, u32)],
     to2: &impl Fn(DVec3) -> DVec2,

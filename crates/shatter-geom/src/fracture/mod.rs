@@ -27,6 +27,9 @@ mod types;
 mod validate;
 mod voronoi;
 
+#[cfg(test)]
+mod fast_path_tests;
+
 pub use entry::fracture;
 pub use params::{FractureError, FractureParams, Method, Pattern, Placement};
 pub use tetra::{SLIVER_QUALITY, SLIVER_VOLUME_FRACTION};

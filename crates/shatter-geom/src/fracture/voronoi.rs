@@ -24,6 +24,17 @@ pub(crate) fn voronoi(
     metric: DVec3,
     eps: f64,
 ) -> (Vec<Piece>, Vec<Bond>) {
+    voronoi_with(mesh, seeds, metric, eps, delaunay_neighbours(seeds, metric))
+}
+
+/// [`voronoi`] with the neighbours given (`None`: every other seed is a candidate).
+pub(crate) fn voronoi_with(
+    mesh: &Piece,
+    seeds: &[DVec3],
+    metric: DVec3,
+    eps: f64,
+    neighbours: Option<(Vec<Vec<u32>>, Vec<u32>)>,
+) -> (Vec<Piece>, Vec<Bond>) {
     let k = seeds.len() as u64;
     let bisector = |i: usize, j: usize| {
         let (si, sj) = (seeds[i], seeds[j]);
@@ -32,7 +43,6 @@ pub(crate) fn voronoi(
         let tag = (i.min(j) as u64) * k + i.max(j) as u64;
         Plane { n, d, tag }
     };
-    let neighbours = delaunay_neighbours(seeds, metric);
     let bounding_box = box_piece(mesh);
     let per_seed: Vec<Vec<Piece>> = (0..seeds.len())
         .into_par_iter()
@@ -141,7 +151,10 @@ fn cell_planes(
 /// Delaunay tetrahedralization (a point inside the face is the centre of an empty sphere
 /// through exactly its two seeds), so no face is missed; a cospherical configuration may
 /// add a neighbour whose face has no area, whose cut then removes nothing.
-fn delaunay_neighbours(seeds: &[DVec3], metric: DVec3) -> Option<(Vec<Vec<u32>>, Vec<u32>)> {
+pub(crate) fn delaunay_neighbours(
+    seeds: &[DVec3],
+    metric: DVec3,
+) -> Option<(Vec<Vec<u32>>, Vec<u32>)> {
     let scale = DVec3::new(metric.x.sqrt(), metric.y.sqrt(), metric.z.sqrt());
     let scaled: Vec<DVec3> = seeds.iter().map(|&s| s * scale).collect();
     let t = crate::delaunay::tetrahedralize(&scaled).ok()?;
