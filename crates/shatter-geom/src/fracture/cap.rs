@@ -187,6 +187,7 @@ pub(crate) fn ear_clip(
         return None;
     }
     let mut next: FastMap<u32, u32> = FastMap::default();
+    next.reserve(n);
     for &(a, b) in boundary {
         if next.insert(a, b).is_some() {
             return None;
@@ -212,6 +213,7 @@ pub(crate) fn ear_clip(
     // Two loop vertices at one point (cuts meeting on an edge): leave it to the CDT,
     // which merges them.
     let mut seen: FastMap<[u64; 3], ()> = FastMap::default();
+    seen.reserve(n);
     for &i in &lp {
         let q = pos[i as usize];
         if seen.insert([q.x, q.y, q.z].map(f64::to_bits), ()).is_some() {
@@ -241,41 +243,59 @@ pub(crate) fn ear_clip(
     // Turn at each live corner (exact sign; the magnitude only ranks flat corners).
     let turn = |i: usize, prev: &[usize], nxt: &[usize]| orient(prev[i], i, nxt[i]);
     let mut reflex: Vec<usize> = (0..n).filter(|&i| turn(i, &prev, &nxt) <= 0.0).collect();
+    // 0: not an ear, 1: an ear turning by less than the margin, 2: a clear ear.
+    let class = |i: usize, prev: &[usize], nxt: &[usize], reflex: &[usize]| -> u8 {
+        let (a, c) = (prev[i], nxt[i]);
+        let t = turn(i, prev, nxt);
+        if t <= 0.0
+            || reflex.iter().any(|&r| {
+                r != a
+                    && r != i
+                    && r != c
+                    && orient(a, i, r) >= 0.0
+                    && orient(i, c, r) >= 0.0
+                    && orient(c, a, r) >= 0.0
+            })
+        {
+            return 0;
+        }
+        if t > 1e-9 * (p[i] - p[a]).length() * (p[c] - p[i]).length() {
+            2
+        } else {
+            1
+        }
+    };
+    let mut cls: Vec<u8> = (0..n).map(|i| class(i, &prev, &nxt, &reflex)).collect();
     let mut alive = vec![true; n];
     let mut out = Vec::with_capacity(n - 2);
     let mut left = n;
     let mut cur = 0;
+    // The first clear ear going round from `cur`, else the first flat one.
+    let pick = |cur: usize, left: usize, cls: &[u8], nxt: &[usize]| {
+        let mut flat = None;
+        let mut i = cur;
+        for _ in 0..left {
+            match cls[i] {
+                2 => return Some(i),
+                1 if flat.is_none() => flat = Some(i),
+                _ => {}
+            }
+            i = nxt[i];
+        }
+        flat
+    };
     while left > 3 {
-        let mut found = None;
-        for strict in [true, false] {
+        // Removing an ear changes only its neighbours' classes, except that a reflex
+        // neighbour turning convex stops blocking others: a class can be stale only as
+        // "not an ear", so when no ear is left, all are recomputed once.
+        let found = pick(cur, left, &cls, &nxt).or_else(|| {
             let mut i = cur;
             for _ in 0..left {
-                let (a, c) = (prev[i], nxt[i]);
-                let t = turn(i, &prev, &nxt);
-                let margin = if strict {
-                    1e-9 * (p[i] - p[a]).length() * (p[c] - p[i]).length()
-                } else {
-                    0.0
-                };
-                if t > margin
-                    && !reflex.iter().any(|&r| {
-                        r != a
-                            && r != i
-                            && r != c
-                            && orient(a, i, r) >= 0.0
-                            && orient(i, c, r) >= 0.0
-                            && orient(c, a, r) >= 0.0
-                    })
-                {
-                    found = Some(i);
-                    break;
-                }
+                cls[i] = class(i, &prev, &nxt, &reflex);
                 i = nxt[i];
             }
-            if found.is_some() {
-                break;
-            }
-        }
+            pick(cur, left, &cls, &nxt)
+        });
         let i = found?;
         let (a, c) = (prev[i], nxt[i]);
         out.push([a, i, c]);
@@ -285,6 +305,8 @@ pub(crate) fn ear_clip(
         left -= 1;
         // The neighbours' turns changed; a reflex corner may have become convex.
         reflex.retain(|&r| alive[r] && (r != a && r != c || turn(r, &prev, &nxt) <= 0.0));
+        cls[a] = class(a, &prev, &nxt, &reflex);
+        cls[c] = class(c, &prev, &nxt, &reflex);
         // Go on past the new corner rather than at it: consecutive ears then go round
         // the loop instead of fanning from one vertex, a better start for the flips.
         cur = nxt[c];

@@ -68,6 +68,7 @@ pub(crate) fn clip(piece: &Piece, plane: &Plane, eps: f64) -> Option<Piece> {
     // Per vertex of `out`: does it lie on the plane?
     let mut on_plane: Vec<bool> = s.iter().map(|&v| v == 0.0).collect();
     let mut cut: FastMap<(u32, u32), u32> = FastMap::default();
+    cut.reserve(64);
     let mut coverings: Vec<Covering> = Vec::new();
 
     for (t, tri) in piece.tris.iter().enumerate() {
@@ -129,6 +130,7 @@ pub(crate) fn clip(piece: &Piece, plane: &Plane, eps: f64) -> Option<Piece> {
     // Boundary edges of the kept surface: directed edges whose reverse is missing. Both
     // ends of a boundary edge lie on the plane, so only such edges are collected.
     let mut directed: FastSet<(u32, u32)> = FastSet::default();
+    directed.reserve(2 * cut.len() + 16);
     for t in &out.tris {
         for k in 0..3 {
             let (a, b) = (t[k], t[(k + 1) % 3]);

@@ -101,6 +101,7 @@ fn decompose(piece: &Piece, tol: f64) -> Option<Vec<Vec<DVec3>>> {
 fn worst_face(p: &Piece, tol: f64) -> (f64, Option<Plane>) {
     // Directed edge -> vertex opposite it in its triangle.
     let mut opposite: FastMap<(u32, u32), u32> = FastMap::default();
+    opposite.reserve(3 * p.tris.len());
     for t in &p.tris {
         for k in 0..3 {
             opposite.insert((t[k], t[(k + 1) % 3]), t[(k + 2) % 3]);

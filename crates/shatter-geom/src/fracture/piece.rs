@@ -56,6 +56,7 @@ impl Piece {
     /// it, so a closed piece stays closed.
     pub fn weld(&mut self) {
         let mut map: FastMap<[u64; 3], u32> = FastMap::default();
+        map.reserve(self.pos.len());
         let mut pos = Vec::with_capacity(self.pos.len());
         let remap: Vec<u32> = self
             .pos
@@ -129,6 +130,7 @@ impl Piece {
         let n = self.tris.len();
         let mut uf = UnionFind::new(n);
         let mut edge_owner: FastMap<(u32, u32), usize> = FastMap::default();
+        edge_owner.reserve(3 * n / 2 + 1);
         for (t, tri) in self.tris.iter().enumerate() {
             for k in 0..3 {
                 let (a, b) = (tri[k], tri[(k + 1) % 3]);
