@@ -247,16 +247,23 @@ pub(crate) fn ear_clip(
     let class = |i: usize, prev: &[usize], nxt: &[usize], reflex: &[usize]| -> u8 {
         let (a, c) = (prev[i], nxt[i]);
         let t = turn(i, prev, nxt);
-        if t <= 0.0
-            || reflex.iter().any(|&r| {
-                r != a
-                    && r != i
-                    && r != c
-                    && orient(a, i, r) >= 0.0
-                    && orient(i, c, r) >= 0.0
-                    && orient(c, a, r) >= 0.0
-            })
-        {
+        if t <= 0.0 {
+            return 0;
+        }
+        let (lo, hi) = (p[a].min(p[i]).min(p[c]), p[a].max(p[i]).max(p[c]));
+        if reflex.iter().any(|&r| {
+            let q = p[r];
+            q.x >= lo.x
+                && q.y >= lo.y
+                && q.x <= hi.x
+                && q.y <= hi.y
+                && r != a
+                && r != i
+                && r != c
+                && orient(a, i, r) >= 0.0
+                && orient(i, c, r) >= 0.0
+                && orient(c, a, r) >= 0.0
+        }) {
             return 0;
         }
         if t > 1e-9 * (p[i] - p[a]).length() * (p[c] - p[i]).length() {
