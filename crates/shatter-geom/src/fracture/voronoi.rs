@@ -58,10 +58,25 @@ pub(crate) fn voronoi_with(
             ) else {
                 return Vec::new();
             };
+            // Each time the plane that cuts away the most of what is left (counted in
+            // vertices), so the pieces shrink fast and later cuts have less to go
+            // through; a plane with no vertex beyond it cannot cut.
+            let mut planes = planes;
             let mut cell: Option<Piece> = None;
-            for plane in &planes {
+            while !planes.is_empty() {
                 let current = cell.as_ref().unwrap_or(mesh);
-                if let Some(next) = clip(current, plane, eps) {
+                let beyond =
+                    |plane: &Plane| current.pos.iter().filter(|&&p| plane.eval(p) > 0.0).count();
+                let (best, count) = planes
+                    .iter()
+                    .enumerate()
+                    .map(|(k, plane)| (k, beyond(plane)))
+                    .fold((0, 0), |acc, x| if x.1 > acc.1 { x } else { acc });
+                if count == 0 {
+                    break;
+                }
+                let plane = planes.swap_remove(best);
+                if let Some(next) = clip(current, &plane, eps) {
                     if next.is_empty() {
                         return Vec::new();
                     }
