@@ -7,14 +7,6 @@ use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 use super::clip::Plane;
 use super::piece::FastMap;
 
-/// An original face lying in the cutting plane and facing its positive side; the cap
-/// triangles over it inherit its tag.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Covering {
-    pub corners: [DVec3; 3],
-    pub tag: u64,
-}
-
 /// An orthonormal frame `(u, v)` of the plane with `u × v` along `n`.
 pub(crate) fn plane_frame(n: DVec3) -> (DVec3, DVec3) {
     let n = n.normalize();
@@ -25,7 +17,7 @@ pub(crate) fn plane_frame(n: DVec3) -> (DVec3, DVec3) {
 
 /// Triangulates the cap bounded by `boundary` (directed edges of the kept surface, all
 /// on `plane`). Returns triangles wound so their normal points along `plane.n` (out of
-/// the kept side), each with its tag.
+/// the kept side).
 ///
 /// Both paths give the constrained Delaunay triangulation of the cap in the plane's 2D
 /// frame, with exact predicates. The common cap, one simple loop, is cut into ears and
@@ -38,8 +30,7 @@ pub(crate) fn triangulate_cap(
     pos: &[DVec3],
     boundary: &[(u32, u32)],
     plane: &Plane,
-    coverings: &[Covering],
-) -> Vec<([u32; 3], u64)> {
+) -> Vec<[u32; 3]> {
     let (u, v) = plane_frame(plane.n);
     let origin = plane.n * (plane.d / plane.n.length_squared());
     let to2 = |p: DVec3| {
@@ -48,13 +39,7 @@ pub(crate) fn triangulate_cap(
     };
 
     if let Some(ears) = ear_clip(pos, boundary, &to2) {
-        return ears
-            .into_iter()
-            .map(|ids| {
-                let c = ids.iter().map(|&i| to2(pos[i as usize])).sum::<DVec2>() / 3.0;
-                (ids, covering_tag(c, plane.tag, coverings, &to2))
-            })
-            .collect();
+        return ears;
     }
 
     let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> =
@@ -131,38 +116,10 @@ pub(crate) fn triangulate_cap(
         if ids.contains(&u32::MAX) {
             continue;
         }
-        let c = vs
-            .iter()
-            .map(|h| DVec2::new(h.position().x, h.position().y))
-            .sum::<DVec2>()
-            / 3.0;
-        let tag = covering_tag(c, plane.tag, coverings, &to2);
         // Spade's faces are counter-clockwise in (u, v), so their normal is along n.
-        out.push((ids, tag));
+        out.push(ids);
     }
     out
-}
-
-/// Point in (closed) triangle test in 2D, for either winding.
-pub(crate) fn point_in_triangle(p: DVec2, a: DVec2, b: DVec2, c: DVec2) -> bool {
-    let d1 = (b - a).perp_dot(p - a);
-    let d2 = (c - b).perp_dot(p - b);
-    let d3 = (a - c).perp_dot(p - c);
-    let has_neg = d1 < 0.0 || d2 < 0.0 || d3 < 0.0;
-    let has_pos = d1 > 0.0 || d2 > 0.0 || d3 > 0.0;
-    !(has_neg && has_pos)
-}
-
-/// The tag of a cap triangle with 2D centroid `c`: that of the covering original face it
-/// lies in, or `tag`.
-fn covering_tag(c: DVec2, tag: u64, coverings: &[Covering], to2: &impl Fn(DVec3) -> DVec2) -> u64 {
-    for cov in coverings {
-        let [a, b, cc] = cov.corners.map(to2);
-        if point_in_triangle(c, a, b, cc) {
-            return cov.tag;
-        }
-    }
-    tag
 }
 
 /// Fast path for the common cap: one boundary loop without repeated points, reversed to

@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use super::cap::{Covering, triangulate_cap};
+use super::cap::triangulate_cap;
 use super::piece::{FastMap, FastSet, Piece};
 
 /// An oriented plane `n · x = d`; its negative side `n · x < d` is kept by [`clip`].
@@ -38,11 +38,52 @@ impl Plane {
 /// Vertices within `eps · |n|` of the plane count as lying on it. Triangles with a
 /// vertex on each side are split at the edges' intersections, computed once per edge
 /// from its lower-indexed end so that both triangles of an edge share the new vertex.
-/// The boundary edges of what is kept all lie on the plane; they bound the cap, which
-/// is triangulated and tagged `plane.tag`, or, where it covers an original face lying in
-/// the plane, tagged like that face. Returns `None` when the plane misses the piece
-/// (everything is kept), so callers can skip the copy.
+/// An original face lying in the plane is kept when it faces the positive side (it then
+/// bounds the kept part) and dropped otherwise. The boundary edges of what is kept all
+/// lie on the plane; they bound the cap, the part of the plane with the solid on both
+/// sides, which is triangulated and tagged `plane.tag`. Returns `None` when the plane
+/// misses the piece (everything is kept), so callers can skip the copy.
 pub(crate) fn clip(piece: &Piece, plane: &Plane, eps: f64) -> Option<Piece> {
+    clip_with(piece, plane, eps, None).map(|c| c.piece)
+}
+
+/// Both sides of `piece` cut by `plane`: `[clip(piece, plane), clip(piece, flipped)]`,
+/// with the cap triangulated once when it can be shared.
+///
+/// Both sides' caps are the part of the plane with the solid on both sides, so one is
+/// the other reversed: the two clips meet the same straddling edges in the same order
+/// and number the cut points alike (negating the plane is exact), and faces lying in the
+/// plane are kept by one side only. The second side checks that its boundary is the
+/// first one's reversed before taking its cap, and triangulates its own otherwise.
+pub(crate) fn split(piece: &Piece, plane: &Plane, eps: f64) -> [Option<Piece>; 2] {
+    let flipped = plane.flipped();
+    match clip_with(piece, plane, eps, None) {
+        Some(Clipped {
+            piece: neg,
+            cap: Some(cap),
+        }) => {
+            let pos = clip_with(piece, &flipped, eps, Some(&cap)).map(|c| c.piece);
+            [Some(neg), pos]
+        }
+        neg => [neg.map(|c| c.piece), clip(piece, &flipped, eps)],
+    }
+}
+
+/// A cap as numbered before compaction: its sorted boundary edges and its triangles.
+struct Cap {
+    boundary: Vec<(u32, u32)>,
+    tris: Vec<[u32; 3]>,
+}
+
+/// What [`clip_with`] returns: the kept part and, when it has one, its cap.
+struct Clipped {
+    piece: Piece,
+    cap: Option<Cap>,
+}
+
+/// [`clip`], returning the cap too; with `other` (the cap of the other side), its
+/// triangles reversed are taken as the cap when the boundaries match.
+fn clip_with(piece: &Piece, plane: &Plane, eps: f64, other: Option<&Cap>) -> Option<Clipped> {
     let tol = eps * plane.n.length();
     let s: Vec<f64> = piece
         .pos
@@ -57,7 +98,10 @@ pub(crate) fn clip(piece: &Piece, plane: &Plane, eps: f64) -> Option<Piece> {
         return None;
     }
     if !s.iter().any(|&v| v < 0.0) {
-        return Some(Piece::default());
+        return Some(Clipped {
+            piece: Piece::default(),
+            cap: None,
+        });
     }
 
     let mut out = Piece {
@@ -69,7 +113,6 @@ pub(crate) fn clip(piece: &Piece, plane: &Plane, eps: f64) -> Option<Piece> {
     let mut on_plane: Vec<bool> = s.iter().map(|&v| v == 0.0).collect();
     let mut cut: FastMap<(u32, u32), u32> = FastMap::default();
     cut.reserve(64);
-    let mut coverings: Vec<Covering> = Vec::new();
 
     for (t, tri) in piece.tris.iter().enumerate() {
         let sv = tri.map(|i| s[i as usize]);
@@ -77,14 +120,13 @@ pub(crate) fn clip(piece: &Piece, plane: &Plane, eps: f64) -> Option<Piece> {
         let pos = sv.iter().filter(|&&v| v > 0.0).count();
         let tag = piece.tags[t];
         if pos == 0 && neg == 0 {
-            // A face lying in the plane: the cap replaces it. If it faces the positive
-            // side it bounds the kept part there; remember it so the cap inherits its tag.
+            // A face lying in the plane bounds the kept part if it faces the positive
+            // side (the solid is below it). The flipped plane negates the test exactly,
+            // so such a face is kept by exactly one side (or, if flat, by neither).
             let [a, b, c] = tri.map(|i| piece.pos[i as usize]);
             if (b - a).cross(c - a).dot(plane.n) > 0.0 {
-                coverings.push(Covering {
-                    corners: [a, b, c],
-                    tag,
-                });
+                out.tris.push(*tri);
+                out.tags.push(tag);
             }
             continue;
         }
@@ -148,11 +190,27 @@ pub(crate) fn clip(piece: &Piece, plane: &Plane, eps: f64) -> Option<Piece> {
             }
         }
     }
+    let mut cap = None;
     if !boundary.is_empty() {
-        let cap = triangulate_cap(&out.pos, &boundary, plane, &coverings);
-        out.tris.extend(cap.iter().map(|c| c.0));
-        out.tags.extend(cap.iter().map(|c| c.1));
+        let mut sorted = boundary.clone();
+        sorted.sort_unstable();
+        let shared = other.filter(|o| {
+            o.boundary.len() == sorted.len()
+                && o.boundary
+                    .iter()
+                    .all(|&(a, b)| sorted.binary_search(&(b, a)).is_ok())
+        });
+        let tris: Vec<[u32; 3]> = match shared {
+            Some(o) => o.tris.iter().map(|t| [t[0], t[2], t[1]]).collect(),
+            None => triangulate_cap(&out.pos, &boundary, plane),
+        };
+        out.tris.extend_from_slice(&tris);
+        out.tags.extend(std::iter::repeat_n(plane.tag, tris.len()));
+        cap = Some(Cap {
+            boundary: sorted,
+            tris,
+        });
     }
     out.compact();
-    Some(out)
+    Some(Clipped { piece: out, cap })
 }

@@ -6,7 +6,7 @@
 
 use glam::DVec3;
 
-use super::clip::{Plane, clip};
+use super::clip::{Plane, split};
 use super::piece::{FastMap, Piece, SURFACE};
 
 /// Relative tolerance (of the fragment's size) for convexity tests.
@@ -67,8 +67,8 @@ fn decompose(piece: &Piece, tol: f64) -> Option<Vec<Vec<DVec3>>> {
         let (_, plane, p) = work.swap_remove(k);
         let Some(plane) = plane else { break };
         let mut parts = Vec::new();
-        for side in [plane, plane.flipped()] {
-            match clip(&p, &side, eps) {
+        for side in split(&p, &plane, eps) {
+            match side {
                 None => parts.push(p.clone()),
                 Some(q) if !q.is_empty() => parts.extend(q.components()),
                 Some(_) => {}

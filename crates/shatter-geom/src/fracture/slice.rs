@@ -5,7 +5,7 @@ use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
 use super::bonds::cap_bonds;
-use super::clip::{Plane, clip};
+use super::clip::{Plane, split};
 use super::piece::Piece;
 use super::seeds::{bounds, unit_vector};
 use super::types::Bond;
@@ -40,18 +40,14 @@ pub(crate) fn slice(mesh: &Piece, planes: &[(DVec3, DVec3)], eps: f64) -> (Vec<P
         };
         let mut next = Vec::with_capacity(pieces.len() * 2);
         for piece in pieces {
-            match clip(&piece, &plane, eps) {
-                // Entirely on the negative side.
-                None => next.push(piece),
-                Some(neg) => {
-                    let pos = clip(&piece, &plane.flipped(), eps);
-                    if !neg.is_empty() {
-                        next.extend(neg.components());
-                    }
-                    match pos {
-                        None => next.push(piece),
-                        Some(pos) if !pos.is_empty() => next.extend(pos.components()),
-                        Some(_) => {}
+            match split(&piece, &plane, eps) {
+                // Entirely on one side.
+                [None, _] | [_, None] => next.push(piece),
+                [Some(neg), Some(pos)] => {
+                    for side in [neg, pos] {
+                        if !side.is_empty() {
+                            next.extend(side.components());
+                        }
                     }
                 }
             }
