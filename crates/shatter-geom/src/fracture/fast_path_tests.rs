@@ -216,3 +216,86 @@ fn delaunay_neighbours_need_a_tetrahedralization() {
     assert!((sum - cube.volume()).abs() < 1e-9 * cube.volume());
     assert_eq!(cells.len(), 10);
 }
+
+/// Every directed edge has its reverse exactly once (a closed, consistently wound
+/// surface), and no triangle repeats a vertex.
+fn closed(p: &Piece) -> bool {
+    let mut count = std::collections::HashMap::new();
+    for t in &p.tris {
+        if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+            return false;
+        }
+        for k in 0..3 {
+            *count.entry((t[k], t[(k + 1) % 3])).or_insert(0i32) += 1;
+        }
+    }
+    count
+        .iter()
+        .all(|(&(a, b), &n)| n == 1 && count.get(&(b, a)) == Some(&1))
+}
+
+#[test]
+fn split_shares_one_cap_and_matches_two_clips() {
+    use super::clip::{Plane, clip, split};
+    let bird = Piece::from_mesh_welded(&shapes::bird());
+    let total = bird.volume();
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let (lo, hi) = super::seeds::bounds(&bird.pos);
+    // Random planes, and the planes of mesh faces (a face then lies in the plane, as
+    // in convex decomposition).
+    let mut planes = Vec::new();
+    for _ in 0..20 {
+        let n = super::seeds::unit_vector(&mut rng);
+        let p = lo + (hi - lo) * DVec3::new(rng.random(), rng.random(), rng.random());
+        planes.push(Plane {
+            n,
+            d: n.dot(p),
+            tag: 7,
+        });
+    }
+    for t in bird.tris.iter().step_by(97) {
+        let [a, b, c] = t.map(|i| bird.pos[i as usize]);
+        let n = (b - a).cross(c - a).normalize();
+        planes.push(Plane {
+            n,
+            d: n.dot(a),
+            tag: 7,
+        });
+    }
+    let mut cut = 0;
+    for plane in &planes {
+        let [neg, pos] = split(&bird, plane, 1e-10);
+        let (Some(neg), Some(pos)) = (neg, pos) else {
+            continue;
+        };
+        cut += 1;
+        let (a, b) = (
+            clip(&bird, plane, 1e-10).unwrap(),
+            clip(&bird, &plane.flipped(), 1e-10).unwrap(),
+        );
+        for (side, alone) in [(&neg, &a), (&pos, &b)] {
+            assert!(closed(side), "plane {plane:?}: a side is not closed");
+            assert!((side.volume() - alone.volume()).abs() <= 1e-12 * total);
+            assert_eq!(side.pos.len(), alone.pos.len());
+        }
+        assert!((neg.volume() + pos.volume() - total).abs() <= 1e-12 * total);
+        // The two caps are one region: equal areas.
+        let cap_area = |p: &Piece| -> f64 {
+            p.tris
+                .iter()
+                .zip(&p.tags)
+                .filter(|(_, tag)| **tag == 7)
+                .map(|(t, _)| {
+                    let [a, b, c] = t.map(|i| p.pos[i as usize]);
+                    (b - a).cross(c - a).length() / 2.0
+                })
+                .sum()
+        };
+        let (ca, cb) = (cap_area(&neg), cap_area(&pos));
+        assert!(
+            ca > 0.0 && (ca - cb).abs() <= 1e-12 * ca.max(1.0),
+            "caps {ca} vs {cb}"
+        );
+    }
+    assert!(cut >= 20, "only {cut} planes cut the bird");
+}
