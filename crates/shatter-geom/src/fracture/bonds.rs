@@ -4,6 +4,7 @@
 use std::collections::BTreeMap;
 
 use glam::{DVec2, DVec3};
+use rayon::prelude::*;
 
 use super::cap::plane_frame;
 use super::piece::{Piece, SURFACE};
@@ -20,7 +21,7 @@ type CapSide = (usize, Vec<[DVec2; 3]>, (DVec2, DVec2));
 /// overlap.
 pub(crate) fn cap_bonds(
     pieces: &[Piece],
-    plane_of: impl Fn(u64) -> (DVec3, DVec3),
+    plane_of: impl Fn(u64) -> (DVec3, DVec3) + Sync,
     min_area: f64,
 ) -> Vec<Bond> {
     // tag -> fragment -> triangles
@@ -38,64 +39,22 @@ pub(crate) fn cap_bonds(
             }
         }
     }
+    // The planes are independent: their overlaps in parallel, summed in tag order (so
+    // the result does not depend on the threads).
+    let tags: Vec<(&u64, &BTreeMap<usize, Vec<[DVec3; 3]>>)> = by_tag
+        .iter()
+        .filter(|(_, frags)| frags.len() >= 2)
+        .collect();
+    let per_tag: Vec<Vec<Contact>> = tags
+        .into_par_iter()
+        .map(|(tag, frags)| plane_contacts(*tag, frags, &plane_of, min_area))
+        .collect();
     let mut acc: BTreeMap<(u32, u32), (f64, DVec3, DVec3)> = BTreeMap::new();
-    for (tag, frags) in &by_tag {
-        if frags.len() < 2 {
-            continue;
-        }
-        let (n, o) = plane_of(*tag);
-        let (u, v) = plane_frame(n);
-        let to2 = |p: DVec3| DVec2::new((p - o).dot(u), (p - o).dot(v));
-        // Split the fragments by the side their caps face.
-        let mut front: Vec<CapSide> = Vec::new();
-        let mut back = Vec::new();
-        for (&f, tris) in frags {
-            let normal_sum: DVec3 = tris.iter().map(|[a, b, c]| (*b - *a).cross(*c - *a)).sum();
-            let t2: Vec<[DVec2; 3]> = tris.iter().map(|t| t.map(to2)).collect();
-            let bb = t2.iter().flatten().fold(
-                (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-                |(lo, hi), &p| (lo.min(p), hi.max(p)),
-            );
-            if normal_sum.dot(n) > 0.0 {
-                front.push((f, t2, bb));
-            } else {
-                back.push((f, t2, bb));
-            }
-        }
-        for (fa, ta, ba) in &front {
-            for (fb, tb, bb) in &back {
-                if ba.0.cmpgt(bb.1).any() || bb.0.cmpgt(ba.1).any() {
-                    continue;
-                }
-                let (area, c2) = if front.len() == 1 && back.len() == 1 {
-                    // One fragment on each side: both caps are the whole section of the
-                    // solid by this plane (the fronts' caps together cover it, and so
-                    // do the backs'), so the overlap is either cap; the smaller area
-                    // of the two (equal up to rounding) and the front's centroid.
-                    let (aa, ca) = triangles_area_centroid(ta);
-                    let (ab, _) = triangles_area_centroid(tb);
-                    (aa.min(ab), ca)
-                } else {
-                    overlap(ta, tb)
-                };
-                if area <= min_area {
-                    continue;
-                }
-                let centroid = o + u * c2.x + v * c2.y;
-                // `fa`'s cap faces +n, so +n points from fa to fb.
-                let (a, b, normal) = if fa < fb {
-                    (*fa, *fb, n)
-                } else {
-                    (*fb, *fa, -n)
-                };
-                let e = acc
-                    .entry((a as u32, b as u32))
-                    .or_insert((0.0, DVec3::ZERO, DVec3::ZERO));
-                e.0 += area;
-                e.1 += centroid * area;
-                e.2 += normal * area;
-            }
-        }
+    for (pair, area, centroid, normal) in per_tag.into_iter().flatten() {
+        let e = acc.entry(pair).or_insert((0.0, DVec3::ZERO, DVec3::ZERO));
+        e.0 += area;
+        e.1 += centroid * area;
+        e.2 += normal * area;
     }
     acc.into_iter()
         .map(|((a, b), (area, c, n))| Bond {
@@ -106,6 +65,69 @@ pub(crate) fn cap_bonds(
             normal: n.normalize_or_zero(),
         })
         .collect()
+}
+
+/// One contact through a plane: the fragment pair `(a, b)`, `a < b`, the overlap's
+/// area and centroid, and the normal from `a` to `b`.
+type Contact = ((u32, u32), f64, DVec3, DVec3);
+
+/// The contacts through the plane of `tag` between the fragments with caps on it.
+fn plane_contacts(
+    tag: u64,
+    frags: &BTreeMap<usize, Vec<[DVec3; 3]>>,
+    plane_of: &impl Fn(u64) -> (DVec3, DVec3),
+    min_area: f64,
+) -> Vec<Contact> {
+    let mut out = Vec::new();
+    let (n, o) = plane_of(tag);
+    let (u, v) = plane_frame(n);
+    let to2 = |p: DVec3| DVec2::new((p - o).dot(u), (p - o).dot(v));
+    // Split the fragments by the side their caps face.
+    let mut front: Vec<CapSide> = Vec::new();
+    let mut back = Vec::new();
+    for (&f, tris) in frags {
+        let normal_sum: DVec3 = tris.iter().map(|[a, b, c]| (*b - *a).cross(*c - *a)).sum();
+        let t2: Vec<[DVec2; 3]> = tris.iter().map(|t| t.map(to2)).collect();
+        let bb = t2.iter().flatten().fold(
+            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+            |(lo, hi), &p| (lo.min(p), hi.max(p)),
+        );
+        if normal_sum.dot(n) > 0.0 {
+            front.push((f, t2, bb));
+        } else {
+            back.push((f, t2, bb));
+        }
+    }
+    for (fa, ta, ba) in &front {
+        for (fb, tb, bb) in &back {
+            if ba.0.cmpgt(bb.1).any() || bb.0.cmpgt(ba.1).any() {
+                continue;
+            }
+            let (area, c2) = if front.len() == 1 && back.len() == 1 {
+                // One fragment on each side: both caps are the whole section of the
+                // solid by this plane (the fronts' caps together cover it, and so
+                // do the backs'), so the overlap is either cap; the smaller area
+                // of the two (equal up to rounding) and the front's centroid.
+                let (aa, ca) = triangles_area_centroid(ta);
+                let (ab, _) = triangles_area_centroid(tb);
+                (aa.min(ab), ca)
+            } else {
+                overlap(ta, tb)
+            };
+            if area <= min_area {
+                continue;
+            }
+            let centroid = o + u * c2.x + v * c2.y;
+            // `fa`'s cap faces +n, so +n points from fa to fb.
+            let (a, b, normal) = if fa < fb {
+                (*fa, *fb, n)
+            } else {
+                (*fb, *fa, -n)
+            };
+            out.push(((a as u32, b as u32), area, centroid, normal));
+        }
+    }
+    out
 }
 
 /// Area and centroid of the overlap of two sets of 2D triangles (each set without

@@ -270,8 +270,8 @@ fn split_shares_one_cap_and_matches_two_clips() {
         };
         cut += 1;
         let (a, b) = (
-            clip(&bird, plane, 1e-10).unwrap(),
-            clip(&bird, &plane.flipped(), 1e-10).unwrap(),
+            clip(&bird, plane, 1e-10).expect("the plane cuts"),
+            clip(&bird, &plane.flipped(), 1e-10).expect("the plane cuts"),
         );
         for (side, alone) in [(&neg, &a), (&pos, &b)] {
             assert!(closed(side), "plane {plane:?}: a side is not closed");
