@@ -10,6 +10,9 @@ use super::cap::plane_frame;
 use super::piece::{Piece, SURFACE};
 use super::types::Bond;
 
+/// The cap triangles on one plane, by fragment.
+type FragmentCaps = BTreeMap<usize, Vec<[DVec3; 3]>>;
+
 /// One fragment's caps on a plane: fragment, 2D triangles, 2D bounds.
 type CapSide = (usize, Vec<[DVec2; 3]>, (DVec2, DVec2));
 
@@ -25,7 +28,7 @@ pub(crate) fn cap_bonds(
     min_area: f64,
 ) -> Vec<Bond> {
     // tag -> fragment -> triangles
-    let mut by_tag: BTreeMap<u64, BTreeMap<usize, Vec<[DVec3; 3]>>> = BTreeMap::new();
+    let mut by_tag: BTreeMap<u64, FragmentCaps> = BTreeMap::new();
     for (f, p) in pieces.iter().enumerate() {
         for (t, &tag) in p.tags.iter().enumerate() {
             if tag != SURFACE {
@@ -41,7 +44,7 @@ pub(crate) fn cap_bonds(
     }
     // The planes are independent: their overlaps in parallel, summed in tag order (so
     // the result does not depend on the threads).
-    let tags: Vec<(&u64, &BTreeMap<usize, Vec<[DVec3; 3]>>)> = by_tag
+    let tags: Vec<(&u64, &FragmentCaps)> = by_tag
         .iter()
         .filter(|(_, frags)| frags.len() >= 2)
         .collect();
@@ -74,7 +77,7 @@ type Contact = ((u32, u32), f64, DVec3, DVec3);
 /// The contacts through the plane of `tag` between the fragments with caps on it.
 fn plane_contacts(
     tag: u64,
-    frags: &BTreeMap<usize, Vec<[DVec3; 3]>>,
+    frags: &FragmentCaps,
     plane_of: &impl Fn(u64) -> (DVec3, DVec3),
     min_area: f64,
 ) -> Vec<Contact> {

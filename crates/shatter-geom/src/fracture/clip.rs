@@ -104,10 +104,14 @@ fn clip_with(piece: &Piece, plane: &Plane, eps: f64, other: Option<&Cap>) -> Opt
         });
     }
 
+    // Room for the cut points and the cap, so that neither grows by reallocation.
+    let extra = 64 + piece.tris.len() / 4;
+    let mut pos = Vec::with_capacity(piece.pos.len() + extra);
+    pos.extend_from_slice(&piece.pos);
     let mut out = Piece {
-        pos: piece.pos.clone(),
-        tris: Vec::with_capacity(piece.tris.len()),
-        tags: Vec::with_capacity(piece.tris.len()),
+        pos,
+        tris: Vec::with_capacity(piece.tris.len() + 2 * extra),
+        tags: Vec::with_capacity(piece.tris.len() + 2 * extra),
     };
     // Per vertex of `out`: does it lie on the plane?
     let mut on_plane: Vec<bool> = s.iter().map(|&v| v == 0.0).collect();

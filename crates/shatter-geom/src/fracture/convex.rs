@@ -16,20 +16,16 @@ const MIN_PIECE_FRACTION: f64 = 1e-3;
 /// At most this many convex pieces per fragment.
 const MAX_PIECES: usize = 16;
 
-/// Is the closed solid convex: is every edge convex within `tol` (the vertex across
-/// each edge lies behind, or within `tol` of, the triangle's plane)? For a connected,
-/// embedded closed surface, convex edges everywhere mean a convex solid.
-pub(crate) fn is_convex(piece: &Piece, tol: f64) -> bool {
-    worst_face(piece, tol).1.is_none()
-}
-
-/// Convex pieces of a closed fragment (each with a non-degenerate volume).
+/// Convex pieces of a closed fragment (each with a non-degenerate volume). A fragment
+/// with no edge concave beyond the tolerance is one piece: for a connected, embedded
+/// closed surface, convex edges everywhere mean a convex solid.
 pub(crate) fn convex_pieces(piece: &Piece) -> Vec<Vec<DVec3>> {
     let tol = CONVEX_TOL * super::voronoi::mesh_scale(piece);
-    if is_convex(piece, tol) {
+    let first = worst_face(piece, tol);
+    if first.1.is_none() {
         return vec![piece.pos.clone()];
     }
-    decompose(piece, tol).unwrap_or_else(|| vec![piece.pos.clone()])
+    decompose(piece, first, tol).unwrap_or_else(|| vec![piece.pos.clone()])
 }
 
 /// Volume of the tetrahedron `[a, b, c, d]` (signed).
@@ -45,14 +41,13 @@ pub(crate) const TET_FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], 
 /// piece is convex within `tol` or `MAX_PIECES` is reached. The clipping is exact, so
 /// the pieces cover the fragment without gaps; pieces under `MIN_PIECE_FRACTION` of it
 /// are dropped (their volume is negligible for collision).
-fn decompose(piece: &Piece, tol: f64) -> Option<Vec<Vec<DVec3>>> {
+fn decompose(piece: &Piece, first: (f64, Option<Plane>), tol: f64) -> Option<Vec<Vec<DVec3>>> {
     let total = piece.volume();
     if total <= 0.0 {
         return None;
     }
     let eps = 1e-10 * tol.max(f64::MIN_POSITIVE) / CONVEX_TOL;
     // (violation, face plane, piece)
-    let first = worst_face(piece, tol);
     let mut work: Vec<(f64, Option<Plane>, Piece)> = vec![(first.0, first.1, piece.clone())];
     loop {
         if work.len() >= MAX_PIECES {
@@ -67,22 +62,19 @@ fn decompose(piece: &Piece, tol: f64) -> Option<Vec<Vec<DVec3>>> {
         let (_, plane, p) = work.swap_remove(k);
         let Some(plane) = plane else { break };
         let mut parts = Vec::new();
+        let mut sides = 0;
         for side in split(&p, &plane, eps) {
-            match side {
-                None => parts.push(p.clone()),
-                Some(q) if !q.is_empty() => parts.extend(q.components()),
-                Some(_) => {}
+            if let Some(q) = side.filter(|q| !q.is_empty()) {
+                sides += 1;
+                parts.extend(components_with_worst_face(q, tol));
             }
         }
-        if parts.len() < 2 {
+        if sides < 2 {
             // No progress (rounding): keep the piece as it is.
             work.push((0.0, None, p));
             continue;
         }
-        for q in parts {
-            let (v, plane) = worst_face(&q, tol);
-            work.push((v, plane, q));
-        }
+        work.extend(parts);
     }
     let pieces: Vec<Vec<DVec3>> = work
         .into_iter()
@@ -94,6 +86,83 @@ fn decompose(piece: &Piece, tol: f64) -> Option<Vec<Vec<DVec3>>> {
     } else {
         Some(pieces)
     }
+}
+
+/// The edge-connected components of `p`, each with its [`worst_face`]: one edge map
+/// serves both (each directed edge finds its reverse, which joins the two triangles and
+/// gives the vertex across the edge).
+fn components_with_worst_face(p: Piece, tol: f64) -> Vec<(f64, Option<Plane>, Piece)> {
+    let n = p.tris.len();
+    let mut owner: FastMap<(u32, u32), u32> = FastMap::default();
+    owner.reserve(3 * n);
+    for (t, tri) in p.tris.iter().enumerate() {
+        for k in 0..3 {
+            owner.insert((tri[k], tri[(k + 1) % 3]), t as u32);
+        }
+    }
+    let mut uf = super::piece::UnionFind::new(n);
+    // Per triangle, its worst violation beyond `tol` and the plane.
+    let mut worst: Vec<(f64, Option<Plane>)> = vec![(tol, None); n];
+    for (t, tri) in p.tris.iter().enumerate() {
+        let [a, b, c] = tri.map(|i| p.pos[i as usize]);
+        let normal = (b - a).cross(c - a);
+        let len = normal.length();
+        for k in 0..3 {
+            let Some(&u) = owner.get(&(tri[(k + 1) % 3], tri[k])) else {
+                continue;
+            };
+            uf.union(t, u as usize);
+            if len == 0.0 {
+                continue;
+            }
+            let other = p.tris[u as usize];
+            let Some(&o) = other
+                .iter()
+                .find(|&&v| v != tri[k] && v != tri[(k + 1) % 3])
+            else {
+                continue;
+            };
+            let nn = normal / len;
+            let v = nn.dot(p.pos[o as usize] - a);
+            if v > worst[t].0 {
+                worst[t] = (
+                    v,
+                    Some(Plane {
+                        n: nn,
+                        d: nn.dot(a),
+                        tag: SURFACE,
+                    }),
+                );
+            }
+        }
+    }
+    let mut comp_of_root = vec![usize::MAX; n];
+    let mut out: Vec<(f64, Option<Plane>, Piece)> = Vec::new();
+    for (t, &(violation, plane)) in worst.iter().enumerate() {
+        let r = uf.find(t);
+        if comp_of_root[r] == usize::MAX {
+            comp_of_root[r] = out.len();
+            out.push((tol, None, Piece::default()));
+        }
+        let c = &mut out[comp_of_root[r]];
+        // The first triangle with the largest violation, as worst_face picks it.
+        if violation > c.0 {
+            c.0 = violation;
+            c.1 = plane;
+        }
+        c.2.tris.push(p.tris[t]);
+        c.2.tags.push(p.tags[t]);
+    }
+    if let [only] = out.as_mut_slice() {
+        // One component: it is the piece, already compact.
+        only.2.pos = p.pos;
+        return out;
+    }
+    for c in &mut out {
+        c.2.pos.clone_from(&p.pos);
+        c.2.compact();
+    }
+    out
 }
 
 /// The face with the most concave edge of `p` (the vertex across the edge farthest in
