@@ -11,8 +11,9 @@
 #     else target/release/shatter (cargo build --release --locked -p shatter-cli)
 # Generated files go to $WORK (default /tmp/shatter-blender-bench), never into the repo.
 # Runs are sequential (never concurrent). Per round: Blender with the add-on as shipped
-# (EXACT boolean solver, all cores), the same with `blender -t 1` (one thread, like
-# shatter), the FAST solver (patched in memory, all cores), then shatter (one thread).
+# (EXACT boolean solver, all cores), the same with `blender -t 1` (one thread), the FAST
+# solver (patched in memory, all cores), then shatter on all cores and on one
+# (RAYON_NUM_THREADS=1).
 set -euo pipefail
 
 RUNS=${1:-5}
@@ -54,12 +55,14 @@ for ((r = 1; r <= RUNS; r++)); do
   done
   echo "load $(cut -d' ' -f1-3 /proc/loadavg)" >> results.txt
   echo "SHATTER $("$SHATTER" fracture --shape bird --method voronoi --seeds-file seeds.xyz --out shatter.obj --json)" >> results.txt
+  echo "load $(cut -d' ' -f1-3 /proc/loadavg)" >> results.txt
+  echo "SHATTER1 $(RAYON_NUM_THREADS=1 "$SHATTER" fracture --shape bird --method voronoi --seeds-file seeds.xyz --json)" >> results.txt
 done
 
 python3 - results.txt <<'PY'
 import json, re, statistics, sys
 blender = {}
-shatter, loads, info = [], [], {}
+shatter, shatter1, loads, info = [], [], [], {}
 for line in open(sys.argv[1]):
     if line.startswith("load "):
         loads.append(line.split()[1])
@@ -71,15 +74,20 @@ for line in open(sys.argv[1]):
     elif line.startswith("SHATTER "):
         j = json.loads(line[len("SHATTER "):])
         shatter.append((j["millis"], j["fragments"], j["fragments_volume"]))
+    elif line.startswith("SHATTER1 "):
+        j = json.loads(line[len("SHATTER1 "):])
+        shatter1.append((j["millis"], j["fragments"], j["fragments_volume"]))
 sm = statistics.median(m for m, _, _ in shatter)
-print("| | wall time per run (CPU time, all threads) | median wall | fragments | total volume (mesh %s) | Blender / shatter (median wall) |" % info["mesh_volume"])
-print("|---|---|---|---|---|---|")
+sm1 = statistics.median(m for m, _, _ in shatter1)
+print("| | wall time per run (CPU time, all threads) | median wall | fragments | total volume (mesh %s) | Blender / shatter (median wall, all cores) | Blender / shatter (1 thread) |" % info["mesh_volume"])
+print("|---|---|---|---|---|---|---|")
 for solver, rows in blender.items():
     med = statistics.median(s for s, _, _, _ in rows)
-    print("| Blender Cell Fracture, %s | %s s (CPU %s s) | %.3f s | %s | %.6f | %.1f× |" % (
+    print("| Blender Cell Fracture, %s | %s s (CPU %s s) | %.3f s | %s | %.6f | %.1f× | %.1f× |" % (
         solver, " / ".join("%.3f" % s for s, _, _, _ in rows), " / ".join("%.3f" % c for _, c, _, _ in rows),
-        med, "/".join(sorted({str(n) for _, _, n, _ in rows})), rows[0][3], med * 1000 / sm))
-print("| shatter voronoi, 1 thread | %s ms | %.1f ms | %s | %.6f | 1× |" % (
-    " / ".join("%.1f" % m for m, _, _ in shatter), sm, "/".join(sorted({str(f) for _, f, _ in shatter})), shatter[0][2]))
+        med, "/".join(sorted({str(n) for _, _, n, _ in rows})), rows[0][3], med * 1000 / sm, med * 1000 / sm1))
+for label, runs, med in (("all cores", shatter, sm), ("1 thread (RAYON_NUM_THREADS=1)", shatter1, sm1)):
+    print("| shatter voronoi, %s | %s ms | %.1f ms | %s | %.6f | | |" % (
+        label, " / ".join("%.1f" % m for m, _, _ in runs), med, "/".join(sorted({str(f) for _, f, _ in runs})), runs[0][2]))
 print("\nload averages (1 min) before each run: " + " ".join(loads))
 PY

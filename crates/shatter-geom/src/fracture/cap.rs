@@ -122,10 +122,11 @@ pub(crate) fn triangulate_cap(
     out
 }
 
-/// Fast path for the common cap: one boundary loop without repeated points, reversed to
-/// run counter-clockwise in the plane's frame and cut into ears. `None` when the
-/// boundary is anything else (several loops, holes, loops touching at a point) or when
-/// no ear is left (a degenerate loop): the caller then falls back to the CDT.
+/// Fast path for the common caps: boundary loops that are each simple, none inside
+/// another (all counter-clockwise once reversed, so there are no holes), and without
+/// repeated points, each cut into ears. `None` when the boundary is anything else
+/// (holes, loops touching at a point) or when no ear is left (a degenerate loop): the
+/// caller then falls back to the CDT.
 ///
 /// An ear is a strictly convex corner (exact `orient2d`) whose triangle has no other
 /// loop vertex inside or on it; only reflex and straight corners can lie there, so only
@@ -150,32 +151,51 @@ pub(crate) fn ear_clip(
             return None;
         }
     }
-    // Walk the loop from the first edge; it must use every edge.
-    let start = boundary[0].0;
-    let mut lp = Vec::with_capacity(n);
-    let mut v = start;
-    loop {
-        lp.push(v);
-        v = *next.get(&v)?;
-        if v == start {
-            break;
-        }
-        if lp.len() > n {
-            return None;
-        }
-    }
-    if lp.len() != n {
-        return None;
-    }
-    // Two loop vertices at one point (cuts meeting on an edge): leave it to the CDT,
-    // which merges them.
+    // Two loop vertices at one point (cuts meeting on an edge, loops touching): leave
+    // it to the CDT, which merges them.
     let mut seen: FastMap<[u64; 3], ()> = FastMap::default();
     seen.reserve(n);
-    for &i in &lp {
-        let q = pos[i as usize];
+    for &(a, _) in boundary {
+        let q = pos[a as usize];
         if seen.insert([q.x, q.y, q.z].map(f64::to_bits), ()).is_some() {
             return None;
         }
+    }
+    // Walk the loops; together they must use every edge once.
+    let mut used: FastMap<u32, ()> = FastMap::default();
+    used.reserve(n);
+    let mut out = Vec::with_capacity(n);
+    for &(start, _) in boundary {
+        if used.contains_key(&start) {
+            continue;
+        }
+        let mut lp = Vec::new();
+        let mut v = start;
+        loop {
+            if used.insert(v, ()).is_some() {
+                return None;
+            }
+            lp.push(v);
+            v = *next.get(&v)?;
+            if v == start {
+                break;
+            }
+        }
+        out.extend(ear_clip_loop(pos, lp, to2)?);
+    }
+    Some(out)
+}
+
+/// Ears of one simple loop (kept-surface direction, so reversed here); `None` if it runs
+/// clockwise (a hole) or no ear is left.
+fn ear_clip_loop(
+    pos: &[DVec3],
+    mut lp: Vec<u32>,
+    to2: &impl Fn(DVec3) -> DVec2,
+) -> Option<Vec<[u32; 3]>> {
+    let n = lp.len();
+    if n < 3 {
+        return None;
     }
     // The cap runs the loop backwards, counter-clockwise in the plane's frame.
     lp.reverse();
