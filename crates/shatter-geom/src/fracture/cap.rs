@@ -144,42 +144,47 @@ pub(crate) fn ear_clip(
     if n < 3 {
         return None;
     }
-    let mut next: FastMap<u32, u32> = FastMap::default();
-    next.reserve(n);
-    for &(a, b) in boundary {
-        if next.insert(a, b).is_some() {
-            return None;
-        }
+    // The edges by their first vertex (sorted, no hashing): each vertex starts one.
+    let mut edges = boundary.to_vec();
+    edges.sort_unstable();
+    if edges.windows(2).any(|w| w[0].0 == w[1].0) {
+        return None;
     }
     // Two loop vertices at one point (cuts meeting on an edge, loops touching): leave
     // it to the CDT, which merges them.
-    let mut seen: FastMap<[u64; 3], ()> = FastMap::default();
-    seen.reserve(n);
-    for &(a, _) in boundary {
-        let q = pos[a as usize];
-        if seen.insert([q.x, q.y, q.z].map(f64::to_bits), ()).is_some() {
-            return None;
-        }
+    let mut keys: Vec<[u64; 3]> = edges
+        .iter()
+        .map(|&(a, _)| {
+            let q = pos[a as usize];
+            [q.x, q.y, q.z].map(f64::to_bits)
+        })
+        .collect();
+    keys.sort_unstable();
+    if keys.windows(2).any(|w| w[0] == w[1]) {
+        return None;
     }
+    let slot = |v: u32| edges.binary_search_by(|e| e.0.cmp(&v)).ok();
     // Walk the loops; together they must use every edge once.
-    let mut used: FastMap<u32, ()> = FastMap::default();
-    used.reserve(n);
+    let mut used = vec![false; n];
     let mut out = Vec::with_capacity(n);
-    for &(start, _) in boundary {
-        if used.contains_key(&start) {
+    for first in 0..n {
+        if used[first] {
             continue;
         }
+        let start = edges[first].0;
         let mut lp = Vec::new();
-        let mut v = start;
+        let mut k = first;
         loop {
-            if used.insert(v, ()).is_some() {
+            if used[k] {
                 return None;
             }
-            lp.push(v);
-            v = *next.get(&v)?;
+            used[k] = true;
+            lp.push(edges[k].0);
+            let v = edges[k].1;
             if v == start {
                 break;
             }
+            k = slot(v)?;
         }
         out.extend(ear_clip_loop(pos, lp, to2)?);
     }
@@ -318,19 +323,36 @@ fn delaunay_flips(p: &[DVec2], tris: &mut [[usize; 3]]) {
         x: p[i].x,
         y: p[i].y,
     };
-    // nbr[t][k]: the triangle across edge k (tri[k] -> tri[k + 1]) of triangle t.
+    // nbr[t][k]: the triangle across edge k (tri[k] -> tri[k + 1]) of triangle t, found
+    // through the edges grouped by first vertex (the vertices are 0..n, n - 2 triangles).
+    let nv = tris.len() + 2;
     let mut nbr = vec![[NONE; 3]; tris.len()];
     {
-        let mut owner: FastMap<(usize, usize), (usize, usize)> = FastMap::default();
-        owner.reserve(tris.len() * 3);
+        let mut start = vec![0usize; nv + 1];
+        for tri in tris.iter() {
+            for &v in tri {
+                start[v + 1] += 1;
+            }
+        }
+        for v in 0..nv {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        // (second vertex, triangle, edge slot)
+        let mut out_edges = vec![(0usize, 0usize, 0usize); 3 * tris.len()];
+        for (t, tri) in tris.iter().enumerate() {
+            for k in 0..3 {
+                out_edges[fill[tri[k]]] = (tri[(k + 1) % 3], t, k);
+                fill[tri[k]] += 1;
+            }
+        }
         for (t, tri) in tris.iter().enumerate() {
             for k in 0..3 {
                 let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                if let Some(&(u, j)) = owner.get(&(b, a)) {
+                if let Some(&(_, u, _)) =
+                    out_edges[start[b]..start[b + 1]].iter().find(|e| e.0 == a)
+                {
                     nbr[t][k] = u;
-                    nbr[u][j] = t;
-                } else {
-                    owner.insert((a, b), (t, k));
                 }
             }
         }

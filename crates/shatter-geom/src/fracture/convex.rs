@@ -107,6 +107,8 @@ fn components_with_worst_face(p: Piece, tol: f64) -> Vec<(f64, Option<Plane>, Pi
         let [a, b, c] = tri.map(|i| p.pos[i as usize]);
         let normal = (b - a).cross(c - a);
         let len = normal.length();
+        let nn = if len > 0.0 { normal / len } else { DVec3::ZERO };
+        let mut best = tol;
         for k in 0..3 {
             let Some(&u) = owner.get(&(tri[(k + 1) % 3], tri[k])) else {
                 continue;
@@ -122,18 +124,17 @@ fn components_with_worst_face(p: Piece, tol: f64) -> Vec<(f64, Option<Plane>, Pi
             else {
                 continue;
             };
-            let nn = normal / len;
-            let v = nn.dot(p.pos[o as usize] - a);
-            if v > worst[t].0 {
-                worst[t] = (
-                    v,
-                    Some(Plane {
-                        n: nn,
-                        d: nn.dot(a),
-                        tag: SURFACE,
-                    }),
-                );
-            }
+            best = best.max(nn.dot(p.pos[o as usize] - a));
+        }
+        if best > tol {
+            worst[t] = (
+                best,
+                Some(Plane {
+                    n: nn,
+                    d: nn.dot(a),
+                    tag: SURFACE,
+                }),
+            );
         }
     }
     let mut comp_of_root = vec![usize::MAX; n];
