@@ -28,18 +28,33 @@ pub(crate) fn cap_bonds(
     min_area: f64,
 ) -> Vec<Bond> {
     // tag -> fragment -> triangles
-    let mut by_tag: BTreeMap<u64, FragmentCaps> = BTreeMap::new();
-    for (f, p) in pieces.iter().enumerate() {
-        for (t, &tag) in p.tags.iter().enumerate() {
-            if tag != SURFACE {
+    // Each piece's caps grouped by tag (in parallel), then gathered by tag.
+    let per_piece: Vec<Vec<(u64, Vec<[DVec3; 3]>)>> = pieces
+        .par_iter()
+        .map(|p| {
+            let mut caps: Vec<(u64, usize)> = p
+                .tags
+                .iter()
+                .enumerate()
+                .filter(|&(_, &tag)| tag != SURFACE)
+                .map(|(t, &tag)| (tag, t))
+                .collect();
+            caps.sort_unstable();
+            let mut out: Vec<(u64, Vec<[DVec3; 3]>)> = Vec::new();
+            for (tag, t) in caps {
                 let tri = p.tris[t].map(|i| p.pos[i as usize]);
-                by_tag
-                    .entry(tag)
-                    .or_default()
-                    .entry(f)
-                    .or_default()
-                    .push(tri);
+                match out.last_mut() {
+                    Some((last, tris)) if *last == tag => tris.push(tri),
+                    _ => out.push((tag, vec![tri])),
+                }
             }
+            out
+        })
+        .collect();
+    let mut by_tag: BTreeMap<u64, FragmentCaps> = BTreeMap::new();
+    for (f, caps) in per_piece.into_iter().enumerate() {
+        for (tag, tris) in caps {
+            by_tag.entry(tag).or_default().insert(f, tris);
         }
     }
     // The planes are independent: their overlaps in parallel, summed in tag order (so
