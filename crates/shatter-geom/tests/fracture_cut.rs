@@ -343,3 +343,24 @@ fn splinter_cells_are_long_along_the_longest_axis() {
     }
     assert!(along > 1.5 * across, "along {along} across {across}");
 }
+
+#[test]
+fn the_result_does_not_depend_on_the_number_of_threads() {
+    let mesh = shatter_geom::shapes::bird();
+    for params in [
+        voronoi(40, Pattern::Uniform, 5),
+        voronoi(25, Pattern::Radial, 6),
+        slice(5, 7),
+    ] {
+        let run = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("a thread pool")
+                .install(|| fracture(&mesh, &params).expect("the bird fractures"))
+        };
+        let (one, three) = (run(1), run(3));
+        assert!(same(&one, &three), "{params:?}: 1 and 3 threads differ");
+        assert!(one.fragments.len() > 5);
+    }
+}
