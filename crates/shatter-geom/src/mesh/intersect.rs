@@ -4,6 +4,7 @@
 //! tolerance is involved.
 
 use glam::DVec3;
+use rayon::prelude::*;
 use robust::{Coord, Coord3D, orient2d, orient3d};
 
 use super::TriMesh;
@@ -146,33 +147,38 @@ impl TriMesh {
             boxes.push((a.min(b).min(c), a.max(b).max(c), t as u32));
         }
         let grid = Grid::new(&boxes);
-        let mut found = Vec::new();
-        'cells: for (cell, members) in grid.cells() {
-            for (k, &i) in members.iter().enumerate() {
-                let (lo, hi, s) = boxes[i as usize];
-                for &j in &members[k + 1..] {
-                    let (lo2, hi2, t) = boxes[j as usize];
-                    if lo2.cmpgt(hi).any() || lo.cmpgt(hi2).any() {
-                        continue;
-                    }
-                    // Test each pair once: in the cell holding its boxes' overlap corner.
-                    if grid.cell_of(lo.max(lo2)) != cell {
-                        continue;
-                    }
-                    let (ts, tt) = (mesh.triangles[s as usize], mesh.triangles[t as usize]);
-                    if ts.iter().any(|v| tt.contains(v)) {
-                        continue;
-                    }
-                    if triangles_meet(mesh.triangle(s as usize), mesh.triangle(t as usize)) {
-                        found.push((s.min(t), s.max(t)));
-                        if found.len() >= limit {
-                            break 'cells;
+        // The cells are independent: tested in parallel, the pairs then sorted.
+        let per_cell: Vec<Vec<(u32, u32)>> = grid
+            .cells
+            .par_iter()
+            .map(|(cell, members)| {
+                let mut found = Vec::new();
+                for (k, &i) in members.iter().enumerate() {
+                    let (lo, hi, s) = boxes[i as usize];
+                    for &j in &members[k + 1..] {
+                        let (lo2, hi2, t) = boxes[j as usize];
+                        if lo2.cmpgt(hi).any() || lo.cmpgt(hi2).any() {
+                            continue;
+                        }
+                        // Test each pair once: in the cell holding its boxes' overlap corner.
+                        if grid.cell_of(lo.max(lo2)) != *cell {
+                            continue;
+                        }
+                        let (ts, tt) = (mesh.triangles[s as usize], mesh.triangles[t as usize]);
+                        if ts.iter().any(|v| tt.contains(v)) {
+                            continue;
+                        }
+                        if triangles_meet(mesh.triangle(s as usize), mesh.triangle(t as usize)) {
+                            found.push((s.min(t), s.max(t)));
                         }
                     }
                 }
-            }
-        }
+                found
+            })
+            .collect();
+        let mut found: Vec<(u32, u32)> = per_cell.into_iter().flatten().collect();
         found.sort_unstable();
+        found.truncate(limit);
         found
     }
 }
@@ -243,10 +249,6 @@ impl Grid {
             .floor()
             .as_i64vec3()
             .to_array()
-    }
-
-    fn cells(&self) -> impl Iterator<Item = ([i64; 3], &[u32])> {
-        self.cells.iter().map(|(k, v)| (*k, v.as_slice()))
     }
 }
 
