@@ -15,7 +15,7 @@ use super::slice::{random_planes, slice};
 use super::tetra::{SLIVER_VOLUME_FRACTION, TetraOptions, tetra};
 use super::types::{Bond, Fracture, Fragment};
 use super::validate::validated_piece;
-use super::voronoi::{delaunay_neighbours, mesh_scale, voronoi_with};
+use super::voronoi::{mesh_scale, voronoi};
 use crate::TriMesh;
 
 /// Relative distance (of the mesh's size) within which a vertex counts as on a plane.
@@ -99,18 +99,8 @@ pub fn fracture(mesh: &TriMesh, params: &FractureParams) -> Result<Fracture, Fra
             } else {
                 DVec3::ONE
             };
-            // Fragments are built as the cells come out; if a cell is below the sliver
-            // threshold, merging changes the pieces and they are built again after it.
-            let threshold = SLIVER_VOLUME_FRACTION * volume;
-            let neighbours = delaunay_neighbours(&points, metric);
-            let (cells, built, bonds) =
-                voronoi_with(&piece, &points, metric, eps, neighbours, |p: &Piece| {
-                    (p.volume() >= threshold).then(|| fragment(p))
-                });
-            match built.into_iter().collect::<Option<Vec<Fragment>>>() {
-                Some(fragments) => (fragments, bonds),
-                None => finish_cut(cells, bonds, volume, &mut warnings),
-            }
+            let (cells, bonds) = voronoi(&piece, &points, metric, eps);
+            finish_cut(cells, bonds, volume, &mut warnings)
         }
         Method::Slice { pieces, planes } => {
             let planes = match planes {
@@ -155,7 +145,7 @@ fn check_points(list: &[DVec3], what: &'static str) -> Result<(), FractureError>
 }
 
 /// Fragments of a cut method: small pieces merged into neighbours, then built.
-pub(crate) fn finish_cut(
+fn finish_cut(
     pieces: Vec<Piece>,
     bonds: Vec<Bond>,
     volume: f64,

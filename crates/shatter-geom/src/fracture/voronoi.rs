@@ -9,42 +9,32 @@ use super::clip::{Plane, clip};
 use super::piece::Piece;
 use super::types::Bond;
 
-/// [`voronoi_with`] with the seeds' Delaunay neighbours and nothing built.
-#[cfg(test)]
+/// Clips `mesh` by the Voronoi cells of `seeds` under the diagonal metric `metric`
+/// (`|x|² = Σ metricᵢ xᵢ²`; all ones for the Euclidean distance). Returns the fragments
+/// (cells in seed order, components in order) and their bonds.
+///
+/// A cell is cut only by the bisectors of its Delaunay neighbours (see
+/// [`delaunay_neighbours`]), nearest first, so a cell costs about as many cuts as it has
+/// faces. The cells are independent and are cut in parallel (rayon; one thread where
+/// there are no threads, as in the browser); the result does not depend on the number
+/// of threads. Duplicate seeds are ignored after their first occurrence.
 pub(crate) fn voronoi(
     mesh: &Piece,
     seeds: &[DVec3],
     metric: DVec3,
     eps: f64,
 ) -> (Vec<Piece>, Vec<Bond>) {
-    let neighbours = delaunay_neighbours(seeds, metric);
-    let (cells, _, bonds) = voronoi_with(mesh, seeds, metric, eps, neighbours, |_| ());
-    (cells, bonds)
+    voronoi_with(mesh, seeds, metric, eps, delaunay_neighbours(seeds, metric))
 }
 
-/// Clips `mesh` by the Voronoi cells of `seeds` under the diagonal metric `metric`
-/// (`|x|² = Σ metricᵢ xᵢ²`; all ones for the Euclidean distance). Returns the fragments
-/// (cells in seed order, components in order) and their bonds.
-///
-/// A cell is cut only by the bisectors of its Delaunay neighbours (see
-/// [`delaunay_neighbours`]), so a cell costs about as many cuts as it has
-/// faces, each time by the plane that removes the most of what is left. The cells are
-/// independent and are cut in parallel (rayon; one thread where
-/// there are no threads, as in the browser); the result does not depend on the number
-/// of threads. Duplicate seeds are ignored after their first occurrence.
-///
-/// `neighbours`: see [`delaunay_neighbours`] (`None`: every other seed is a candidate).
-/// `build` runs on every cell right after it is cut, in the same parallel task, so that
-/// building fragments overlaps the cutting of other cells; its results come back with
-/// the (welded) cells and the bonds.
-pub(crate) fn voronoi_with<T: Send>(
+/// [`voronoi`] with the neighbours given (`None`: every other seed is a candidate).
+pub(crate) fn voronoi_with(
     mesh: &Piece,
     seeds: &[DVec3],
     metric: DVec3,
     eps: f64,
     neighbours: Option<(Vec<Vec<u32>>, Vec<u32>)>,
-    build: impl Fn(&Piece) -> T + Sync,
-) -> (Vec<Piece>, Vec<T>, Vec<Bond>) {
+) -> (Vec<Piece>, Vec<Bond>) {
     let k = seeds.len() as u64;
     let bisector = |i: usize, j: usize| {
         let (si, sj) = (seeds[i], seeds[j]);
@@ -54,7 +44,7 @@ pub(crate) fn voronoi_with<T: Send>(
         Plane { n, d, tag }
     };
     let bounding_box = box_piece(mesh);
-    let per_seed: Vec<Vec<(Piece, T)>> = (0..seeds.len())
+    let per_seed: Vec<Vec<Piece>> = (0..seeds.len())
         .into_par_iter()
         .map(|i| {
             let Some(planes) = cell_planes(
@@ -93,18 +83,10 @@ pub(crate) fn voronoi_with<T: Send>(
                     cell = Some(next);
                 }
             }
-            let pieces = cell.unwrap_or_else(|| mesh.clone()).components();
-            pieces
-                .into_iter()
-                .map(|mut p| {
-                    p.weld();
-                    let built = build(&p);
-                    (p, built)
-                })
-                .collect()
+            cell.unwrap_or_else(|| mesh.clone()).components()
         })
         .collect();
-    let (cells, built): (Vec<Piece>, Vec<T>) = per_seed.into_iter().flatten().unzip();
+    let cells: Vec<Piece> = per_seed.into_iter().flatten().collect();
     let plane_of = |tag: u64| {
         let (i, j) = ((tag / k) as usize, (tag % k) as usize);
         let p = bisector(i, j);
@@ -113,7 +95,7 @@ pub(crate) fn voronoi_with<T: Send>(
     };
     let scale = mesh_scale(mesh);
     let bonds = cap_bonds(&cells, plane_of, 1e-12 * scale * scale);
-    (cells, built, bonds)
+    (cells, bonds)
 }
 
 /// The planes that bound seed `i`'s cell, nearest first; `None` when the seed repeats
