@@ -105,16 +105,17 @@ fn components_with_worst_face(p: Piece, tol: f64) -> Vec<(f64, Option<Plane>, Pi
     let mut worst: Vec<(f64, Option<Plane>)> = vec![(tol, None); n];
     for (t, tri) in p.tris.iter().enumerate() {
         let [a, b, c] = tri.map(|i| p.pos[i as usize]);
+        // Unnormalised: most edges are convex (a negative dot product), and those need
+        // no square root.
         let normal = (b - a).cross(c - a);
-        let len = normal.length();
-        let nn = if len > 0.0 { normal / len } else { DVec3::ZERO };
-        let mut best = tol;
+        let len2 = normal.length_squared();
+        let mut best = 0.0f64;
         for k in 0..3 {
             let Some(&u) = owner.get(&(tri[(k + 1) % 3], tri[k])) else {
                 continue;
             };
             uf.union(t, u as usize);
-            if len == 0.0 {
+            if len2 == 0.0 {
                 continue;
             }
             let other = p.tris[u as usize];
@@ -124,11 +125,13 @@ fn components_with_worst_face(p: Piece, tol: f64) -> Vec<(f64, Option<Plane>, Pi
             else {
                 continue;
             };
-            best = best.max(nn.dot(p.pos[o as usize] - a));
+            best = best.max(normal.dot(p.pos[o as usize] - a));
         }
-        if best > tol {
+        if best > 0.0 && best * best > tol * tol * len2 {
+            let len = len2.sqrt();
+            let nn = normal / len;
             worst[t] = (
-                best,
+                best / len,
                 Some(Plane {
                     n: nn,
                     d: nn.dot(a),
@@ -180,27 +183,29 @@ fn worst_face(p: &Piece, tol: f64) -> (f64, Option<Plane>) {
     let mut best: (f64, Option<Plane>) = (tol, None);
     for t in &p.tris {
         let [a, b, c] = t.map(|i| p.pos[i as usize]);
+        // Unnormalised until a violation beyond the best so far shows up.
         let n = (b - a).cross(c - a);
-        let len = n.length();
-        if len == 0.0 {
+        let len2 = n.length_squared();
+        if len2 == 0.0 {
             continue;
         }
-        let n = n / len;
+        let mut raw = 0.0f64;
         for k in 0..3 {
-            let Some(&o) = opposite.get(&(t[(k + 1) % 3], t[k])) else {
-                continue;
-            };
-            let v = n.dot(p.pos[o as usize] - a);
-            if v > best.0 {
-                best = (
-                    v,
-                    Some(Plane {
-                        n,
-                        d: n.dot(a),
-                        tag: SURFACE,
-                    }),
-                );
+            if let Some(&o) = opposite.get(&(t[(k + 1) % 3], t[k])) {
+                raw = raw.max(n.dot(p.pos[o as usize] - a));
             }
+        }
+        if raw > 0.0 && raw * raw > best.0 * best.0 * len2 {
+            let len = len2.sqrt();
+            let n = n / len;
+            best = (
+                raw / len,
+                Some(Plane {
+                    n,
+                    d: n.dot(a),
+                    tag: SURFACE,
+                }),
+            );
         }
     }
     best
