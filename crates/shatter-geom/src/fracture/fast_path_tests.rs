@@ -11,12 +11,12 @@ use super::piece::Piece;
 use super::voronoi::{delaunay_neighbours, voronoi_with};
 use crate::shapes;
 
+fn coord(p: DVec2) -> robust::Coord<f64> {
+    robust::Coord { x: p.x, y: p.y }
+}
+
 fn orient(a: DVec2, b: DVec2, c: DVec2) -> f64 {
-    robust::orient2d(
-        robust::Coord { x: a.x, y: a.y },
-        robust::Coord { x: b.x, y: b.y },
-        robust::Coord { x: c.x, y: c.y },
-    )
+    robust::orient2d(coord(a), coord(b), coord(c))
 }
 
 /// A random simple polygon, counter-clockwise: a star around the origin, with some
@@ -108,24 +108,7 @@ fn ear_clipped_caps_are_constrained_delaunay_triangulations() {
             let Some(&d) = directed.get(&(b, a)) else {
                 continue;
             };
-            let inc = robust::incircle(
-                robust::Coord {
-                    x: p(a).x,
-                    y: p(a).y,
-                },
-                robust::Coord {
-                    x: p(b).x,
-                    y: p(b).y,
-                },
-                robust::Coord {
-                    x: p(c).x,
-                    y: p(c).y,
-                },
-                robust::Coord {
-                    x: p(d).x,
-                    y: p(d).y,
-                },
-            );
+            let inc = robust::incircle(coord(p(a)), coord(p(b)), coord(p(c)), coord(p(d)));
             assert!(
                 inc <= 0.0,
                 "case {case}: interior edge {a}-{b} not locally Delaunay"
