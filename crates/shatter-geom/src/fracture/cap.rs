@@ -155,8 +155,9 @@ pub(crate) fn ear_clip(
     let mut keys: Vec<[u64; 3]> = edges
         .iter()
         .map(|&(a, _)| {
+            // +0.0 and -0.0 are the same point.
             let q = pos[a as usize];
-            [q.x, q.y, q.z].map(f64::to_bits)
+            [q.x + 0.0, q.y + 0.0, q.z + 0.0].map(f64::to_bits)
         })
         .collect();
     keys.sort_unstable();

@@ -14,8 +14,8 @@ use super::types::Bond;
 /// (cells in seed order, components in order) and their bonds.
 ///
 /// A cell is cut only by the bisectors of its Delaunay neighbours (see
-/// [`delaunay_neighbours`]), nearest first, so a cell costs about as many cuts as it has
-/// faces. The cells are independent and are cut in parallel (rayon; one thread where
+/// [`delaunay_neighbours`]), each time by the one that removes the most of what is left,
+/// so a cell costs about as many cuts as it has faces. The cells are independent and are cut in parallel (rayon; one thread where
 /// there are no threads, as in the browser); the result does not depend on the number
 /// of threads. Duplicate seeds are ignored after their first occurrence.
 pub(crate) fn voronoi(
@@ -98,8 +98,9 @@ pub(crate) fn voronoi_with(
     (cells, bonds)
 }
 
-/// The planes that bound seed `i`'s cell, nearest first; `None` when the seed repeats
-/// an earlier one (whose cell it shares) or its cell is empty.
+/// The planes that bound seed `i`'s cell, nearest first (the order in which equally good
+/// cuts are taken); `None` when the seed repeats an earlier one (whose cell it shares)
+/// or its cell is empty.
 fn cell_planes(
     i: usize,
     seeds: &[DVec3],
@@ -131,10 +132,10 @@ fn cell_planes(
     // bisectors are its faces.
     order = Vec::with_capacity(seeds.len());
     for (j, &sj) in seeds.iter().enumerate() {
-        let d2 = dist2(si, sj);
         if j == i {
             continue;
         }
+        let d2 = dist2(si, sj);
         if d2 == 0.0 {
             if j < i {
                 return None;
