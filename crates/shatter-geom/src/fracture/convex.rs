@@ -101,45 +101,21 @@ fn components_with_worst_face(p: Piece, tol: f64) -> Vec<(f64, Option<Plane>, Pi
         }
     }
     let mut uf = super::piece::UnionFind::new(n);
-    // Per triangle, its worst violation beyond `tol` and the plane.
-    let mut worst: Vec<(f64, Option<Plane>)> = vec![(tol, None); n];
-    for (t, tri) in p.tris.iter().enumerate() {
-        let [a, b, c] = tri.map(|i| p.pos[i as usize]);
-        // Unnormalised: most edges are convex (a negative dot product), and those need
-        // no square root.
-        let normal = (b - a).cross(c - a);
-        let len2 = normal.length_squared();
-        let mut best = 0.0f64;
-        for k in 0..3 {
-            let Some(&u) = owner.get(&(tri[(k + 1) % 3], tri[k])) else {
-                continue;
+    // Per triangle, its worst violation beyond `tol` and the plane; the same lookups join
+    // each triangle to its neighbours.
+    let worst: Vec<(f64, Option<Plane>)> = p
+        .tris
+        .iter()
+        .enumerate()
+        .map(|(t, tri)| {
+            let across = |a: u32, b: u32| {
+                let &u = owner.get(&(b, a))?;
+                uf.union(t, u as usize);
+                p.tris[u as usize].into_iter().find(|&v| v != a && v != b)
             };
-            uf.union(t, u as usize);
-            if len2 == 0.0 {
-                continue;
-            }
-            let other = p.tris[u as usize];
-            let Some(&o) = other
-                .iter()
-                .find(|&&v| v != tri[k] && v != tri[(k + 1) % 3])
-            else {
-                continue;
-            };
-            best = best.max(normal.dot(p.pos[o as usize] - a));
-        }
-        if best > 0.0 && best * best > tol * tol * len2 {
-            let len = len2.sqrt();
-            let nn = normal / len;
-            worst[t] = (
-                best / len,
-                Some(Plane {
-                    n: nn,
-                    d: nn.dot(a),
-                    tag: SURFACE,
-                }),
-            );
-        }
-    }
+            concavity(&p, *tri, tol, across).map_or((tol, None), |(v, plane)| (v, Some(plane)))
+        })
+        .collect();
     let mut comp_of_root = vec![usize::MAX; n];
     let mut out: Vec<(f64, Option<Plane>, Piece)> = Vec::new();
     for (t, &(violation, plane)) in worst.iter().enumerate() {
@@ -169,6 +145,44 @@ fn components_with_worst_face(p: Piece, tol: f64) -> Vec<(f64, Option<Plane>, Pi
     out
 }
 
+/// How far the vertices across the edges of triangle `tri` of `p` lie in front of its
+/// plane, when the farthest lies beyond `tol`: that distance and the plane.
+/// `across(a, b)` gives the vertex across edge `a → b` (opposite it in the triangle on
+/// the other side), if any. The normal stays unnormalised until a violation shows up,
+/// so the common convex edges need no square root.
+fn concavity(
+    p: &Piece,
+    tri: [u32; 3],
+    tol: f64,
+    mut across: impl FnMut(u32, u32) -> Option<u32>,
+) -> Option<(f64, Plane)> {
+    let [a, b, c] = tri.map(|i| p.pos[i as usize]);
+    let normal = (b - a).cross(c - a);
+    let len2 = normal.length_squared();
+    let mut raw = 0.0f64;
+    for k in 0..3 {
+        if let Some(o) = across(tri[k], tri[(k + 1) % 3])
+            && len2 > 0.0
+        {
+            raw = raw.max(normal.dot(p.pos[o as usize] - a));
+        }
+    }
+    if raw > 0.0 && raw * raw > tol * tol * len2 {
+        let len = len2.sqrt();
+        let n = normal / len;
+        Some((
+            raw / len,
+            Plane {
+                n,
+                d: n.dot(a),
+                tag: SURFACE,
+            },
+        ))
+    } else {
+        None
+    }
+}
+
 /// The face with the most concave edge of `p` (the vertex across the edge farthest in
 /// front of the face's plane), as a plane; `None` when no edge is concave beyond `tol`.
 fn worst_face(p: &Piece, tol: f64) -> (f64, Option<Plane>) {
@@ -182,30 +196,9 @@ fn worst_face(p: &Piece, tol: f64) -> (f64, Option<Plane>) {
     }
     let mut best: (f64, Option<Plane>) = (tol, None);
     for t in &p.tris {
-        let [a, b, c] = t.map(|i| p.pos[i as usize]);
-        // Unnormalised until a violation beyond the best so far shows up.
-        let n = (b - a).cross(c - a);
-        let len2 = n.length_squared();
-        if len2 == 0.0 {
-            continue;
-        }
-        let mut raw = 0.0f64;
-        for k in 0..3 {
-            if let Some(&o) = opposite.get(&(t[(k + 1) % 3], t[k])) {
-                raw = raw.max(n.dot(p.pos[o as usize] - a));
-            }
-        }
-        if raw > 0.0 && raw * raw > best.0 * best.0 * len2 {
-            let len = len2.sqrt();
-            let n = n / len;
-            best = (
-                raw / len,
-                Some(Plane {
-                    n,
-                    d: n.dot(a),
-                    tag: SURFACE,
-                }),
-            );
+        let across = |a: u32, b: u32| opposite.get(&(b, a)).copied();
+        if let Some((v, plane)) = concavity(p, *t, best.0, across) {
+            best = (v, Some(plane));
         }
     }
     best
