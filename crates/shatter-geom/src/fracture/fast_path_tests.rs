@@ -258,8 +258,25 @@ fn split_shares_one_cap_and_matches_two_clips() {
         );
         for (side, alone) in [(&neg, &a), (&pos, &b)] {
             assert!(closed(side), "plane {plane:?}: a side is not closed");
+            // The same vertices, to the bit, and the same triangles off the cap as the
+            // clip by that side's plane (the positive cap may be triangulated apart).
+            assert!(
+                side.pos == alone.pos,
+                "plane {plane:?}: the vertices differ"
+            );
+            let off_cap = |p: &Piece| -> Vec<([u32; 3], u64)> {
+                p.tris
+                    .iter()
+                    .copied()
+                    .zip(p.tags.iter().copied())
+                    .filter(|t| t.1 != 7)
+                    .collect()
+            };
+            assert!(
+                off_cap(side) == off_cap(alone),
+                "plane {plane:?}: the triangles differ"
+            );
             assert!((side.volume() - alone.volume()).abs() <= 1e-12 * total);
-            assert_eq!(side.pos.len(), alone.pos.len());
         }
         assert!((neg.volume() + pos.volume() - total).abs() <= 1e-12 * total);
         // The two caps are one region: equal areas.
