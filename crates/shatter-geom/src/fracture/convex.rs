@@ -88,30 +88,42 @@ fn decompose(piece: &Piece, first: (f64, Option<Plane>), tol: f64) -> Option<Vec
     }
 }
 
-/// The edge-connected components of `p`, each with its [`worst_face`]: one edge map
-/// serves both (each directed edge finds its reverse, which joins the two triangles and
-/// gives the vertex across the edge).
+/// The edge-connected components of `p`, each with its [`worst_face`]: pairing each
+/// directed edge with its reverse serves both (it joins the two triangles and gives the
+/// vertex across the edge).
 fn components_with_worst_face(p: Piece, tol: f64) -> Vec<(f64, Option<Plane>, Piece)> {
     let n = p.tris.len();
-    let mut owner: FastMap<(u32, u32), u32> = FastMap::default();
-    owner.reserve(3 * n);
+    const NONE: u32 = u32::MAX;
+    // nbr[t][k]: the triangle across edge k (tri[k] -> tri[k + 1]), found by pairing each
+    // edge with its reverse: one map operation per edge.
+    let mut nbr = vec![[NONE; 3]; n];
+    let mut open: FastMap<u64, (u32, u8)> = FastMap::default();
+    open.reserve(3 * n / 2 + 1);
+    let mut uf = super::piece::UnionFind::new(n);
     for (t, tri) in p.tris.iter().enumerate() {
         for k in 0..3 {
-            owner.insert((tri[k], tri[(k + 1) % 3]), t as u32);
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            if let Some((u, j)) = open.remove(&(u64::from(b) << 32 | u64::from(a))) {
+                nbr[t][k] = u;
+                nbr[u as usize][j as usize] = t as u32;
+                uf.union(t, u as usize);
+            } else {
+                open.insert(u64::from(a) << 32 | u64::from(b), (t as u32, k as u8));
+            }
         }
     }
-    let mut uf = super::piece::UnionFind::new(n);
-    // Per triangle, its worst violation beyond `tol` and the plane; the same lookups join
-    // each triangle to its neighbours.
+    // Per triangle, its worst violation beyond `tol` and the plane.
     let worst: Vec<(f64, Option<Plane>)> = p
         .tris
         .iter()
         .enumerate()
         .map(|(t, tri)| {
-            let across = |a: u32, b: u32| {
-                let &u = owner.get(&(b, a))?;
-                uf.union(t, u as usize);
-                p.tris[u as usize].into_iter().find(|&v| v != a && v != b)
+            let across = |k: usize| {
+                let u = nbr[t][k];
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                (u != NONE)
+                    .then(|| p.tris[u as usize].into_iter().find(|&v| v != a && v != b))
+                    .flatten()
             };
             concavity(&p, *tri, tol, across).map_or((tol, None), |(v, plane)| (v, Some(plane)))
         })
@@ -147,21 +159,21 @@ fn components_with_worst_face(p: Piece, tol: f64) -> Vec<(f64, Option<Plane>, Pi
 
 /// How far the vertices across the edges of triangle `tri` of `p` lie in front of its
 /// plane, when the farthest lies beyond `tol`: that distance and the plane.
-/// `across(a, b)` gives the vertex across edge `a → b` (opposite it in the triangle on
-/// the other side), if any. The normal stays unnormalised until a violation shows up,
+/// `across(k)` gives the vertex across edge `k` (`tri[k] → tri[k + 1]`: opposite it in the
+/// triangle on the other side), if any. The normal stays unnormalised until a violation shows up,
 /// so the common convex edges need no square root.
 fn concavity(
     p: &Piece,
     tri: [u32; 3],
     tol: f64,
-    mut across: impl FnMut(u32, u32) -> Option<u32>,
+    mut across: impl FnMut(usize) -> Option<u32>,
 ) -> Option<(f64, Plane)> {
     let [a, b, c] = tri.map(|i| p.pos[i as usize]);
     let normal = (b - a).cross(c - a);
     let len2 = normal.length_squared();
     let mut raw = 0.0f64;
     for k in 0..3 {
-        if let Some(o) = across(tri[k], tri[(k + 1) % 3])
+        if let Some(o) = across(k)
             && len2 > 0.0
         {
             raw = raw.max(normal.dot(p.pos[o as usize] - a));
@@ -196,7 +208,7 @@ fn worst_face(p: &Piece, tol: f64) -> (f64, Option<Plane>) {
     }
     let mut best: (f64, Option<Plane>) = (tol, None);
     for t in &p.tris {
-        let across = |a: u32, b: u32| opposite.get(&(b, a)).copied();
+        let across = |k: usize| opposite.get(&(t[(k + 1) % 3], t[k])).copied();
         if let Some((v, plane)) = concavity(p, *t, best.0, across) {
             best = (v, Some(plane));
         }
