@@ -1,6 +1,7 @@
 //! The working representation of a solid during fracture: an indexed, welded triangle
 //! mesh whose triangles carry the tag of the cut that created them.
 
+use std::collections::hash_map::Entry;
 use std::collections::{HashMap, HashSet};
 use std::hash::{BuildHasherDefault, Hasher};
 
@@ -129,40 +130,41 @@ impl Piece {
     pub fn components(self) -> Vec<Piece> {
         let n = self.tris.len();
         let mut uf = UnionFind::new(n);
-        let mut edge_owner: FastMap<(u32, u32), usize> = FastMap::default();
+        // Undirected edge -> its first triangle: one map operation per edge.
+        let mut edge_owner: FastMap<u64, usize> = FastMap::default();
         edge_owner.reserve(3 * n / 2 + 1);
         for (t, tri) in self.tris.iter().enumerate() {
             for k in 0..3 {
                 let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                let key = (a.min(b), a.max(b));
-                match edge_owner.get(&key) {
-                    Some(&o) => uf.union(o, t),
-                    None => {
-                        edge_owner.insert(key, t);
+                let key = u64::from(a.min(b)) << 32 | u64::from(a.max(b));
+                match edge_owner.entry(key) {
+                    Entry::Occupied(o) => uf.union(*o.get(), t),
+                    Entry::Vacant(v) => {
+                        v.insert(t);
                     }
                 }
             }
         }
-        let mut comp_of_root: FastMap<usize, usize> = FastMap::default();
+        let mut comp_of_root = vec![usize::MAX; n];
         let mut out: Vec<Piece> = Vec::new();
         for t in 0..n {
             let r = uf.find(t);
-            let c = *comp_of_root.entry(r).or_insert_with(|| {
-                out.push(Piece {
-                    pos: self.pos.clone(),
-                    ..Piece::default()
-                });
-                out.len() - 1
-            });
+            if comp_of_root[r] == usize::MAX {
+                comp_of_root[r] = out.len();
+                out.push(Piece::default());
+            }
+            let c = comp_of_root[r];
             out[c].tris.push(self.tris[t]);
             out[c].tags.push(self.tags[t]);
         }
-        if out.len() == 1 {
-            // Avoid the extra copy's compaction cost being wasted: still compact.
-            out[0].compact();
+        if let [only] = out.as_mut_slice() {
+            // One component: the positions move instead of being copied.
+            only.pos = self.pos;
+            only.compact();
             return out;
         }
         for p in &mut out {
+            p.pos.clone_from(&self.pos);
             p.compact();
         }
         out
