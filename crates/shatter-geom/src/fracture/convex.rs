@@ -93,40 +93,10 @@ fn decompose(piece: &Piece, first: (f64, Option<Plane>), tol: f64) -> Option<Vec
 /// vertex across the edge).
 fn components_with_worst_face(p: Piece, tol: f64) -> Vec<(f64, Option<Plane>, Piece)> {
     let n = p.tris.len();
-    const NONE: u32 = u32::MAX;
-    // nbr[t][k]: the triangle across edge k (tri[k] -> tri[k + 1]), found by pairing each
-    // edge with its reverse: one map operation per edge.
-    let mut nbr = vec![[NONE; 3]; n];
-    let mut open: FastMap<u64, (u32, u8)> = FastMap::default();
-    open.reserve(3 * n / 2 + 1);
-    let mut uf = super::piece::UnionFind::new(n);
-    for (t, tri) in p.tris.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            if let Some((u, j)) = open.remove(&(u64::from(b) << 32 | u64::from(a))) {
-                nbr[t][k] = u;
-                nbr[u as usize][j as usize] = t as u32;
-                uf.union(t, u as usize);
-            } else {
-                open.insert(u64::from(a) << 32 | u64::from(b), (t as u32, k as u8));
-            }
-        }
-    }
+    let (nbr, mut uf) = neighbours(&p);
     // Per triangle, its worst violation beyond `tol` and the plane.
-    let worst: Vec<(f64, Option<Plane>)> = p
-        .tris
-        .iter()
-        .enumerate()
-        .map(|(t, tri)| {
-            let across = |k: usize| {
-                let u = nbr[t][k];
-                let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                (u != NONE)
-                    .then(|| p.tris[u as usize].into_iter().find(|&v| v != a && v != b))
-                    .flatten()
-            };
-            concavity(&p, *tri, tol, across).map_or((tol, None), |(v, plane)| (v, Some(plane)))
-        })
+    let worst: Vec<(f64, Option<Plane>)> = (0..n)
+        .map(|t| concavity(&p, t, &nbr, tol).map_or((tol, None), |(v, plane)| (v, Some(plane))))
         .collect();
     let mut comp_of_root = vec![usize::MAX; n];
     let mut out: Vec<(f64, Option<Plane>, Piece)> = Vec::new();
@@ -157,24 +127,50 @@ fn components_with_worst_face(p: Piece, tol: f64) -> Vec<(f64, Option<Plane>, Pi
     out
 }
 
-/// How far the vertices across the edges of triangle `tri` of `p` lie in front of its
-/// plane, when the farthest lies beyond `tol`: that distance and the plane.
-/// `across(k)` gives the vertex across edge `k` (`tri[k] → tri[k + 1]`: opposite it in the
-/// triangle on the other side), if any. The normal stays unnormalised until a violation shows up,
-/// so the common convex edges need no square root.
-fn concavity(
-    p: &Piece,
-    tri: [u32; 3],
-    tol: f64,
-    mut across: impl FnMut(usize) -> Option<u32>,
-) -> Option<(f64, Plane)> {
+/// Marker in [`neighbours`] for an edge without a reverse.
+const NO_NEIGHBOUR: u32 = u32::MAX;
+
+/// Per triangle of `p`, the triangle across each edge `k` (`tri[k] → tri[k + 1]`), found
+/// by pairing each directed edge with its reverse (one map operation per edge; the map
+/// holds only the unpaired ones), and the union of the triangles so joined.
+fn neighbours(p: &Piece) -> (Vec<[u32; 3]>, super::piece::UnionFind) {
+    let n = p.tris.len();
+    let mut nbr = vec![[NO_NEIGHBOUR; 3]; n];
+    let mut open: FastMap<u64, (u32, u8)> = FastMap::default();
+    open.reserve(3 * n / 2 + 1);
+    let mut uf = super::piece::UnionFind::new(n);
+    for (t, tri) in p.tris.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            if let Some((u, j)) = open.remove(&(u64::from(b) << 32 | u64::from(a))) {
+                nbr[t][k] = u;
+                nbr[u as usize][j as usize] = t as u32;
+                uf.union(t, u as usize);
+            } else {
+                open.insert(u64::from(a) << 32 | u64::from(b), (t as u32, k as u8));
+            }
+        }
+    }
+    (nbr, uf)
+}
+
+/// How far the vertices across the edges of triangle `t` of `p` lie in front of its
+/// plane, when the farthest lies beyond `tol`: that distance and the plane. `nbr` are
+/// the triangles' neighbours ([`neighbours`]); the vertex across edge `k` is the one
+/// opposite it in the neighbour there. The normal stays unnormalised until a violation
+/// shows up, so the common convex edges need no square root.
+fn concavity(p: &Piece, t: usize, nbr: &[[u32; 3]], tol: f64) -> Option<(f64, Plane)> {
+    let tri = p.tris[t];
     let [a, b, c] = tri.map(|i| p.pos[i as usize]);
     let normal = (b - a).cross(c - a);
     let len2 = normal.length_squared();
     let mut raw = 0.0f64;
     for k in 0..3 {
-        if let Some(o) = across(k)
+        let u = nbr[t][k];
+        let (ea, eb) = (tri[k], tri[(k + 1) % 3]);
+        if u != NO_NEIGHBOUR
             && len2 > 0.0
+            && let Some(o) = p.tris[u as usize].into_iter().find(|&v| v != ea && v != eb)
         {
             raw = raw.max(normal.dot(p.pos[o as usize] - a));
         }
@@ -198,18 +194,10 @@ fn concavity(
 /// The face with the most concave edge of `p` (the vertex across the edge farthest in
 /// front of the face's plane), as a plane; `None` when no edge is concave beyond `tol`.
 fn worst_face(p: &Piece, tol: f64) -> (f64, Option<Plane>) {
-    // Directed edge -> vertex opposite it in its triangle.
-    let mut opposite: FastMap<(u32, u32), u32> = FastMap::default();
-    opposite.reserve(3 * p.tris.len());
-    for t in &p.tris {
-        for k in 0..3 {
-            opposite.insert((t[k], t[(k + 1) % 3]), t[(k + 2) % 3]);
-        }
-    }
+    let (nbr, _) = neighbours(p);
     let mut best: (f64, Option<Plane>) = (tol, None);
-    for t in &p.tris {
-        let across = |k: usize| opposite.get(&(t[(k + 1) % 3], t[k])).copied();
-        if let Some((v, plane)) = concavity(p, *t, best.0, across) {
+    for t in 0..p.tris.len() {
+        if let Some((v, plane)) = concavity(p, t, &nbr, best.0) {
             best = (v, Some(plane));
         }
     }
