@@ -20,9 +20,10 @@ pub(crate) fn plane_frame(n: DVec3) -> (DVec3, DVec3) {
 /// the kept side).
 ///
 /// Both paths give the constrained Delaunay triangulation of the cap in the plane's 2D
-/// frame, with exact predicates. The common cap, one simple loop, is cut into ears and
-/// flipped to Delaunay (see [`ear_clip`]); that is several times faster than building a
-/// CDT with spade, which a cap of tens of vertices needs about 20 µs for. Anything else
+/// frame, with exact predicates. The common cap, one or more simple loops without holes,
+/// is cut into ears and flipped to Delaunay (see [`ear_clip`]); that is several times
+/// faster than building a CDT with spade, which a cap of tens of vertices needs about
+/// 20 µs for. Anything else
 /// goes to spade's CDT, the inside found by parity of the constraint edges crossed from
 /// the outside, so loops that touch at a vertex and nested loops (holes, islands in
 /// holes) come out right.
