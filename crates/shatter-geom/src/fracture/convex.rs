@@ -160,6 +160,13 @@ fn neighbours(p: &Piece) -> (Vec<[u32; 3]>, super::piece::UnionFind) {
 /// opposite it in the neighbour there. The normal stays unnormalised until a violation
 /// shows up, so the common convex edges need no square root.
 fn concavity(p: &Piece, t: usize, nbr: &[[u32; 3]], tol: f64) -> Option<(f64, Plane)> {
+    // A cap lies on a plane the whole solid is behind (a cell face, a slicing plane), so
+    // no vertex lies in front of it, and its edges with the surface are convex: only
+    // edges between two surface triangles can be concave. (The decomposition's own
+    // cuts are tagged as surface, so they are tested like it.)
+    if p.tags[t] != SURFACE {
+        return None;
+    }
     let tri = p.tris[t];
     let [a, b, c] = tri.map(|i| p.pos[i as usize]);
     let normal = (b - a).cross(c - a);
@@ -169,6 +176,7 @@ fn concavity(p: &Piece, t: usize, nbr: &[[u32; 3]], tol: f64) -> Option<(f64, Pl
         let u = nbr[t][k];
         let (ea, eb) = (tri[k], tri[(k + 1) % 3]);
         if u != NO_NEIGHBOUR
+            && p.tags[u as usize] == SURFACE
             && len2 > 0.0
             && let Some(o) = p.tris[u as usize].into_iter().find(|&v| v != ea && v != eb)
         {
