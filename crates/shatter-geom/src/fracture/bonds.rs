@@ -10,9 +10,6 @@ use super::cap::plane_frame;
 use super::piece::{Piece, SURFACE};
 use super::types::Bond;
 
-/// The cap triangles on one plane, by fragment.
-type FragmentCaps = BTreeMap<usize, Vec<[DVec3; 3]>>;
-
 /// One fragment's caps on a plane: fragment, 2D triangles, 2D bounds.
 type CapSide = (usize, Vec<[DVec2; 3]>, (DVec2, DVec2));
 
@@ -27,45 +24,22 @@ pub(crate) fn cap_bonds(
     plane_of: impl Fn(u64) -> (DVec3, DVec3) + Sync,
     min_area: f64,
 ) -> Vec<Bond> {
-    // tag -> fragment -> triangles
-    // Each piece's caps grouped by tag (in parallel), then gathered by tag.
-    let per_piece: Vec<Vec<(u64, Vec<[DVec3; 3]>)>> = pieces
-        .par_iter()
-        .map(|p| {
-            let mut caps: Vec<(u64, usize)> = p
-                .tags
-                .iter()
-                .enumerate()
-                .filter(|&(_, &tag)| tag != SURFACE)
-                .map(|(t, &tag)| (tag, t))
-                .collect();
-            caps.sort_unstable();
-            let mut out: Vec<(u64, Vec<[DVec3; 3]>)> = Vec::new();
-            for (tag, t) in caps {
-                let tri = p.tris[t].map(|i| p.pos[i as usize]);
-                match out.last_mut() {
-                    Some((last, tris)) if *last == tag => tris.push(tri),
-                    _ => out.push((tag, vec![tri])),
-                }
-            }
-            out
-        })
-        .collect();
-    let mut by_tag: BTreeMap<u64, FragmentCaps> = BTreeMap::new();
-    for (f, caps) in per_piece.into_iter().enumerate() {
-        for (tag, tris) in caps {
-            by_tag.entry(tag).or_default().insert(f, tris);
+    // Each piece's caps grouped by tag, with their area, centroid and normal (in
+    // parallel); then gathered by tag as small records.
+    let per_piece: Vec<Vec<CapGroup>> = pieces.par_iter().map(cap_groups).collect();
+    let mut by_tag: BTreeMap<u64, Vec<(usize, &CapGroup)>> = BTreeMap::new();
+    for (f, groups) in per_piece.iter().enumerate() {
+        for g in groups {
+            by_tag.entry(g.tag).or_default().push((f, g));
         }
     }
-    // The planes are independent: their overlaps in parallel, summed in tag order (so
+    // The planes are independent: their contacts in parallel, summed in tag order (so
     // the result does not depend on the threads).
-    let tags: Vec<(&u64, &FragmentCaps)> = by_tag
-        .iter()
-        .filter(|(_, frags)| frags.len() >= 2)
-        .collect();
+    let tags: Vec<(&u64, &Vec<(usize, &CapGroup)>)> =
+        by_tag.iter().filter(|(_, caps)| caps.len() >= 2).collect();
     let per_tag: Vec<Vec<Contact>> = tags
         .into_par_iter()
-        .map(|(tag, frags)| plane_contacts(*tag, frags, &plane_of, min_area))
+        .map(|(tag, caps)| plane_contacts(*tag, caps, pieces, &plane_of, min_area))
         .collect();
     let mut acc: BTreeMap<(u32, u32), (f64, DVec3, DVec3)> = BTreeMap::new();
     for (pair, area, centroid, normal) in per_tag.into_iter().flatten() {
@@ -85,6 +59,57 @@ pub(crate) fn cap_bonds(
         .collect()
 }
 
+/// One piece's cap triangles with one tag: their indices, total area, area-weighted
+/// centroid and summed (area-weighted) normal.
+struct CapGroup {
+    tag: u64,
+    tris: Vec<u32>,
+    area: f64,
+    centroid: DVec3,
+    normal_sum: DVec3,
+}
+
+/// The caps of `p` grouped by tag, in tag order.
+fn cap_groups(p: &Piece) -> Vec<CapGroup> {
+    let mut caps: Vec<(u64, u32)> = p
+        .tags
+        .iter()
+        .enumerate()
+        .filter(|&(_, &tag)| tag != SURFACE)
+        .map(|(t, &tag)| (tag, t as u32))
+        .collect();
+    caps.sort_unstable();
+    let mut out: Vec<CapGroup> = Vec::new();
+    for (tag, t) in caps {
+        if out.last().is_none_or(|g| g.tag != tag) {
+            out.push(CapGroup {
+                tag,
+                tris: Vec::new(),
+                area: 0.0,
+                centroid: DVec3::ZERO,
+                normal_sum: DVec3::ZERO,
+            });
+        }
+        let g = out.last_mut().expect("a group was just pushed");
+        let [a, b, c] = p.tris[t as usize].map(|i| p.pos[i as usize]);
+        let cross = (b - a).cross(c - a);
+        let area = cross.length() / 2.0;
+        g.tris.push(t);
+        g.area += area;
+        g.centroid += (a + b + c) / 3.0 * area;
+        g.normal_sum += cross;
+    }
+    for g in &mut out {
+        if g.area > 0.0 {
+            g.centroid /= g.area;
+        }
+    }
+    out
+}
+
+/// A fragment's cap group on a plane, as gathered by tag.
+type CapRef<'a> = &'a (usize, &'a CapGroup);
+
 /// One contact through a plane: the fragment pair `(a, b)`, `a < b`, the overlap's
 /// area and centroid, and the normal from `a` to `b`.
 type Contact = ((u32, u32), f64, DVec3, DVec3);
@@ -92,57 +117,60 @@ type Contact = ((u32, u32), f64, DVec3, DVec3);
 /// The contacts through the plane of `tag` between the fragments with caps on it.
 fn plane_contacts(
     tag: u64,
-    frags: &FragmentCaps,
+    caps: &[(usize, &CapGroup)],
+    pieces: &[Piece],
     plane_of: &impl Fn(u64) -> (DVec3, DVec3),
     min_area: f64,
 ) -> Vec<Contact> {
-    let mut out = Vec::new();
     let (n, o) = plane_of(tag);
+    // Split the fragments by the side their caps face.
+    let (front, back): (Vec<CapRef>, Vec<CapRef>) =
+        caps.iter().partition(|(_, g)| g.normal_sum.dot(n) > 0.0);
+    let contact = |fa: usize, fb: usize, area: f64, centroid: DVec3| {
+        // `fa`'s cap faces +n, so +n points from fa to fb.
+        let (a, b, normal) = if fa < fb { (fa, fb, n) } else { (fb, fa, -n) };
+        ((a as u32, b as u32), area, centroid, normal)
+    };
+    if let ([(fa, ga)], [(fb, gb)]) = (front.as_slice(), back.as_slice()) {
+        // One fragment on each side: both caps are the whole section of the solid by
+        // this plane (the fronts' caps together cover it, and so do the backs'), so the
+        // overlap is either cap: the smaller area of the two (equal up to rounding) and
+        // the front's centroid.
+        let area = ga.area.min(gb.area);
+        return if area > min_area {
+            vec![contact(*fa, *fb, area, ga.centroid)]
+        } else {
+            Vec::new()
+        };
+    }
     let (u, v) = plane_frame(n);
     let to2 = |p: DVec3| DVec2::new((p - o).dot(u), (p - o).dot(v));
-    // Split the fragments by the side their caps face.
-    let mut front: Vec<CapSide> = Vec::new();
-    let mut back = Vec::new();
-    for (&f, tris) in frags {
-        let normal_sum: DVec3 = tris.iter().map(|[a, b, c]| (*b - *a).cross(*c - *a)).sum();
-        let t2: Vec<[DVec2; 3]> = tris.iter().map(|t| t.map(to2)).collect();
+    let flat = |&&(f, g): &CapRef| -> CapSide {
+        let p = &pieces[f];
+        let t2: Vec<[DVec2; 3]> = g
+            .tris
+            .iter()
+            .map(|&t| p.tris[t as usize].map(|i| to2(p.pos[i as usize])))
+            .collect();
         let bb = t2.iter().flatten().fold(
             (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-            |(lo, hi), &p| (lo.min(p), hi.max(p)),
+            |(lo, hi), &q| (lo.min(q), hi.max(q)),
         );
-        if normal_sum.dot(n) > 0.0 {
-            front.push((f, t2, bb));
-        } else {
-            back.push((f, t2, bb));
-        }
-    }
+        (f, t2, bb)
+    };
+    let front: Vec<CapSide> = front.iter().map(flat).collect();
+    let back: Vec<CapSide> = back.iter().map(flat).collect();
+    let mut out = Vec::new();
     for (fa, ta, ba) in &front {
         for (fb, tb, bb) in &back {
             if ba.0.cmpgt(bb.1).any() || bb.0.cmpgt(ba.1).any() {
                 continue;
             }
-            let (area, c2) = if front.len() == 1 && back.len() == 1 {
-                // One fragment on each side: both caps are the whole section of the
-                // solid by this plane (the fronts' caps together cover it, and so
-                // do the backs'), so the overlap is either cap; the smaller area
-                // of the two (equal up to rounding) and the front's centroid.
-                let (aa, ca) = triangles_area_centroid(ta);
-                let (ab, _) = triangles_area_centroid(tb);
-                (aa.min(ab), ca)
-            } else {
-                overlap(ta, tb)
-            };
+            let (area, c2) = overlap(ta, tb);
             if area <= min_area {
                 continue;
             }
-            let centroid = o + u * c2.x + v * c2.y;
-            // `fa`'s cap faces +n, so +n points from fa to fb.
-            let (a, b, normal) = if fa < fb {
-                (*fa, *fb, n)
-            } else {
-                (*fb, *fa, -n)
-            };
-            out.push(((a as u32, b as u32), area, centroid, normal));
+            out.push(contact(*fa, *fb, area, o + u * c2.x + v * c2.y));
         }
     }
     out
@@ -166,22 +194,6 @@ fn overlap(a: &[[DVec2; 3]], b: &[[DVec2; 3]]) -> (f64, DVec2) {
             area += ar;
             moment += c * ar;
         }
-    }
-    if area > 0.0 {
-        (area, moment / area)
-    } else {
-        (0.0, DVec2::ZERO)
-    }
-}
-
-/// Total area and centroid of 2D triangles that do not overlap (either winding).
-fn triangles_area_centroid(tris: &[[DVec2; 3]]) -> (f64, DVec2) {
-    let mut area = 0.0;
-    let mut moment = DVec2::ZERO;
-    for [a, b, c] in tris {
-        let ar = ((*b - *a).perp_dot(*c - *a) * 0.5).abs();
-        area += ar;
-        moment += (*a + *b + *c) / 3.0 * ar;
     }
     if area > 0.0 {
         (area, moment / area)
