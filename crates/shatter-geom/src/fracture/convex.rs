@@ -98,31 +98,15 @@ fn components_with_worst_face(p: Piece, tol: f64) -> Vec<(f64, Option<Plane>, Pi
     let worst: Vec<(f64, Option<Plane>)> = (0..n)
         .map(|t| concavity(&p, t, &nbr, tol).map_or((tol, None), |(v, plane)| (v, Some(plane))))
         .collect();
-    let mut comp_of_root = vec![usize::MAX; n];
-    let mut out: Vec<(f64, Option<Plane>, Piece)> = Vec::new();
-    for (t, &(violation, plane)) in worst.iter().enumerate() {
-        let r = uf.find(t);
-        if comp_of_root[r] == usize::MAX {
-            comp_of_root[r] = out.len();
-            out.push((tol, None, Piece::default()));
-        }
-        let c = &mut out[comp_of_root[r]];
+    let (parts, group) = p.into_groups(&mut uf);
+    let mut out: Vec<(f64, Option<Plane>, Piece)> =
+        parts.into_iter().map(|q| (tol, None, q)).collect();
+    for (&g, &(violation, plane)) in group.iter().zip(&worst) {
         // The first triangle with the largest violation, as worst_face picks it.
-        if violation > c.0 {
-            c.0 = violation;
-            c.1 = plane;
+        if violation > out[g].0 {
+            out[g].0 = violation;
+            out[g].1 = plane;
         }
-        c.2.tris.push(p.tris[t]);
-        c.2.tags.push(p.tags[t]);
-    }
-    if let [only] = out.as_mut_slice() {
-        // One component: it is the piece, already compact.
-        only.2.pos = p.pos;
-        return out;
-    }
-    for c in &mut out {
-        c.2.pos.clone_from(&p.pos);
-        c.2.compact();
     }
     out
 }

@@ -145,29 +145,38 @@ impl Piece {
                 }
             }
         }
-        let mut comp_of_root = vec![usize::MAX; n];
+        self.into_groups(&mut uf).0
+    }
+
+    /// Splits the piece into the groups of triangles that `uf` (over its triangles)
+    /// joins, in order of their first triangle, each compacted; also returns each
+    /// triangle's group.
+    pub fn into_groups(self, uf: &mut UnionFind) -> (Vec<Piece>, Vec<usize>) {
+        let n = self.tris.len();
+        let mut group_of_root = vec![usize::MAX; n];
+        let mut group = vec![0; n];
         let mut out: Vec<Piece> = Vec::new();
         for t in 0..n {
             let r = uf.find(t);
-            if comp_of_root[r] == usize::MAX {
-                comp_of_root[r] = out.len();
+            if group_of_root[r] == usize::MAX {
+                group_of_root[r] = out.len();
                 out.push(Piece::default());
             }
-            let c = comp_of_root[r];
-            out[c].tris.push(self.tris[t]);
-            out[c].tags.push(self.tags[t]);
+            group[t] = group_of_root[r];
+            out[group[t]].tris.push(self.tris[t]);
+            out[group[t]].tags.push(self.tags[t]);
         }
         if let [only] = out.as_mut_slice() {
-            // One component: the positions move instead of being copied.
+            // One group: the positions move instead of being copied.
             only.pos = self.pos;
             only.compact();
-            return out;
+            return (out, group);
         }
         for p in &mut out {
             p.pos.clone_from(&self.pos);
             p.compact();
         }
-        out
+        (out, group)
     }
 }
 
