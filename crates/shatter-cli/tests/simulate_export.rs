@@ -180,25 +180,21 @@ fn world_bounds(imp: &Imported, nodes: &[usize], i: usize) -> ([f32; 3], [f32; 3
     (lo, hi)
 }
 
+/// `shatter simulate scene.toml --steps STEPS <extra> --json` in `dir`, which must
+/// succeed; its JSON report.
+fn simulate_json(dir: &Path, extra: &[&str]) -> serde_json::Value {
+    let steps = STEPS.to_string();
+    let mut args = vec!["simulate", "scene.toml", "--steps", &steps];
+    args.extend_from_slice(extra);
+    args.push("--json");
+    shatter(dir, &args).ok().json()
+}
+
 #[test]
 fn the_export_reimports_with_a_node_per_fragment_and_projectile_and_every_keyframe() {
     let dir = tempfile::tempdir().unwrap();
     write_scene(dir.path());
-    let steps = STEPS.to_string();
-    let json = shatter(
-        dir.path(),
-        &[
-            "simulate",
-            "scene.toml",
-            "--steps",
-            &steps,
-            "--export",
-            "run.glb",
-            "--json",
-        ],
-    )
-    .ok()
-    .json();
+    let json = simulate_json(dir.path(), &["--export", "run.glb"]);
     assert_eq!(json["export"]["nodes"], NODES, "{json}");
     assert_eq!(
         json["export"]["fragment_nodes"],
@@ -301,21 +297,7 @@ fn the_export_reimports_with_a_node_per_fragment_and_projectile_and_every_keyfra
 fn the_record_has_a_header_and_one_row_per_step() {
     let dir = tempfile::tempdir().unwrap();
     write_scene(dir.path());
-    let steps = STEPS.to_string();
-    let json = shatter(
-        dir.path(),
-        &[
-            "simulate",
-            "scene.toml",
-            "--steps",
-            &steps,
-            "--record",
-            "run.csv",
-            "--json",
-        ],
-    )
-    .ok()
-    .json();
+    let json = simulate_json(dir.path(), &["--record", "run.csv"]);
     assert_eq!(json["record"]["rows"], STEPS, "{json}");
     assert!(json.get("export").is_none());
 
@@ -368,29 +350,14 @@ fn the_record_has_a_header_and_one_row_per_step() {
 fn the_fps_flag_sets_the_keyframe_count_and_clusters_export_the_same_nodes() {
     let dir = tempfile::tempdir().unwrap();
     write_scene(dir.path());
-    let steps = STEPS.to_string();
     // (fps, keyframes): 0 keeps every step; 10 keeps steps 0, 6, …, 42 and the last.
     for (fps, keyframes, bonds) in [("0", STEPS + 1, "joints"), ("10", 8 + 1, "clusters")] {
-        let json = shatter(
+        let json = simulate_json(
             dir.path(),
             &[
-                "simulate",
-                "scene.toml",
-                "--steps",
-                &steps,
-                "--bonds",
-                bonds,
-                "--export",
-                "run.glb",
-                "--record",
-                "run.csv",
-                "--fps",
-                fps,
-                "--json",
+                "--bonds", bonds, "--export", "run.glb", "--record", "run.csv", "--fps", fps,
             ],
-        )
-        .ok()
-        .json();
+        );
         assert_eq!(
             json["export"]["keyframes"], keyframes,
             "--fps {fps}: {json}"
