@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::cap::triangulate_cap;
-use super::piece::{FastMap, FastSet, Piece};
+use super::piece::{Face, FastMap, FastSet, Piece};
 
 /// An oriented plane `n · x = d`; its negative side `n · x < d` is kept by [`clip`].
 /// `tag` is written on the cap triangles the plane creates.
@@ -44,7 +44,15 @@ impl Plane {
 /// sides, which is triangulated and tagged `plane.tag`. Returns `None` when the plane
 /// misses the piece (everything is kept), so callers can skip the copy.
 pub(crate) fn clip(piece: &Piece, plane: &Plane, eps: f64) -> Option<Piece> {
-    let [neg, _] = cut(piece, plane, eps, false);
+    let [neg, _] = cut(piece, plane, eps, false, false);
+    neg
+}
+
+/// [`clip`], leaving the cap as a [`Face`] (a polygon) instead of triangles; the faces
+/// of `piece` are cut as polygons. [`Piece::close_faces`] triangulates them at the end,
+/// so a sequence of cuts triangulates each cap once, with only its own corners.
+pub(crate) fn clip_keeping_faces(piece: &Piece, plane: &Plane, eps: f64) -> Option<Piece> {
+    let [neg, _] = cut(piece, plane, eps, false, true);
     neg
 }
 
@@ -56,12 +64,200 @@ pub(crate) fn clip(piece: &Piece, plane: &Plane, eps: f64) -> Option<Piece> {
 /// are kept by one side only. The positive side checks that its boundary is the
 /// negative one's reversed before taking its cap, and triangulates its own otherwise.
 pub(crate) fn split(piece: &Piece, plane: &Plane, eps: f64) -> [Option<Piece>; 2] {
-    cut(piece, plane, eps, true)
+    cut(piece, plane, eps, true, false)
+}
+
+/// The two sides of a cut being built: the positions (the piece's and the cut points),
+/// which of them lie on the plane, the cut point of each crossed edge, and the kept
+/// triangles and faces of each side (`out[0]` negative, `out[1]` positive).
+struct Cutter<'a> {
+    piece: &'a Piece,
+    /// Per vertex of the piece: its signed distance, 0 within the tolerance.
+    s: Vec<f64>,
+    pos: Vec<DVec3>,
+    on_plane: Vec<bool>,
+    cuts: FastMap<(u32, u32), u32>,
+    out: [Piece; 2],
+    both: bool,
+}
+
+impl Cutter<'_> {
+    /// The cut point of the crossed edge `a b` (one per undirected edge, computed from
+    /// its lower-indexed end, so every triangle and face of the edge shares it).
+    fn cut_point(&mut self, i: u32, j: u32) -> u32 {
+        let key = (i.min(j), i.max(j));
+        let (pos, on_plane, piece, s) = (&mut self.pos, &mut self.on_plane, self.piece, &self.s);
+        *self.cuts.entry(key).or_insert_with(|| {
+            let (a, b) = key;
+            let (pa, pb) = (piece.pos[a as usize], piece.pos[b as usize]);
+            let (sa, sb) = (s[a as usize], s[b as usize]);
+            let tt = sa / (sa - sb);
+            pos.push(pa + (pb - pa) * tt);
+            on_plane.push(true);
+            (pos.len() - 1) as u32
+        })
+    }
+
+    fn keep(&mut self, side: usize, tri: [u32; 3], tag: u64) {
+        if side == 0 || self.both {
+            self.out[side].tris.push(tri);
+            self.out[side].tags.push(tag);
+        }
+    }
+
+    /// One triangle of the piece: kept by the side it lies on, or split between them.
+    fn triangle(&mut self, tri: [u32; 3], tag: u64, plane: &Plane) {
+        let sv = tri.map(|i| self.s[i as usize]);
+        let neg = sv.iter().filter(|&&v| v < 0.0).count();
+        let posc = sv.iter().filter(|&&v| v > 0.0).count();
+        if posc == 0 && neg == 0 {
+            // A face lying in the plane bounds the side below it (the one it faces away
+            // from); a flat one bounds neither.
+            let [a, b, c] = tri.map(|i| self.piece.pos[i as usize]);
+            let facing = (b - a).cross(c - a).dot(plane.n);
+            if facing > 0.0 {
+                self.keep(0, tri, tag);
+            } else if facing < 0.0 {
+                self.keep(1, tri, tag);
+            }
+            return;
+        }
+        if posc == 0 {
+            self.keep(0, tri, tag);
+            return;
+        }
+        if neg == 0 {
+            self.keep(1, tri, tag);
+            return;
+        }
+        // A straddling triangle: each side's part is at most a quadrilateral, the
+        // corners in the triangle's order, fanned from the first.
+        let mut polys: [[u32; 4]; 2] = [[0; 4]; 2];
+        let mut m = [0usize; 2];
+        for k in 0..3 {
+            let (i, j) = (tri[k], tri[(k + 1) % 3]);
+            let (si, sj) = (sv[k], sv[(k + 1) % 3]);
+            if si <= 0.0 {
+                polys[0][m[0]] = i;
+                m[0] += 1;
+            }
+            if si >= 0.0 {
+                polys[1][m[1]] = i;
+                m[1] += 1;
+            }
+            if (si < 0.0 && sj > 0.0) || (si > 0.0 && sj < 0.0) {
+                let v = self.cut_point(i, j);
+                for h in 0..2 {
+                    polys[h][m[h]] = v;
+                    m[h] += 1;
+                }
+            }
+        }
+        for h in 0..2 {
+            for k in 1..m[h] - 1 {
+                self.keep(h, [polys[h][0], polys[h][k], polys[h][k + 1]], tag);
+            }
+        }
+    }
+
+    /// One face of the piece, as a polygon: kept whole by the side it lies on, or its
+    /// edges split and each side's part closed along the cut line. A face with a corner
+    /// on the plane, or nearly parallel to it, is triangulated and its triangles cut
+    /// instead (the polygon rule below assumes every crossing is a cut point).
+    fn face(&mut self, face: &Face, plane: &Plane) {
+        let (mut neg, mut posc, mut zero) = (0, 0, 0);
+        for &(a, _) in &face.edges {
+            match self.s[a as usize] {
+                v if v < 0.0 => neg += 1,
+                v if v > 0.0 => posc += 1,
+                _ => zero += 1,
+            }
+        }
+        if zero == 0 && posc == 0 {
+            self.out[0].faces.push(face.clone());
+            return;
+        }
+        if zero == 0 && neg == 0 {
+            if self.both {
+                self.out[1].faces.push(face.clone());
+            }
+            return;
+        }
+        let m = face.plane.n;
+        // Along the cut line, the negative side's closing edges run along m × n (the
+        // part kept lies to their left, on the negative side).
+        let along = m.cross(plane.n);
+        let parallel =
+            along.length_squared() <= 1e-12 * m.length_squared() * plane.n.length_squared();
+        if zero > 0 || parallel || !self.face_as_polygon(face, along) {
+            self.face_as_triangles(face, plane);
+        }
+    }
+
+    /// The polygon cut of [`Cutter::face`]; `false` (nothing kept) when the crossings
+    /// along the cut line do not alternate as a polygon's must (rounding in a nearly
+    /// degenerate cut), for the caller to fall back on triangles.
+    fn face_as_polygon(&mut self, face: &Face, along: DVec3) -> bool {
+        let sides = if self.both { 2 } else { 1 };
+        let mut kept: [Vec<(u32, u32)>; 2] = [Vec::new(), Vec::new()];
+        // Per side: (position along the line, cut point, whether the side's boundary
+        // leaves the face's edges there (true) or comes back to them).
+        let mut crossings: [Vec<(f64, u32, bool)>; 2] = [Vec::new(), Vec::new()];
+        for &(a, b) in &face.edges {
+            let (sa, sb) = (self.s[a as usize], self.s[b as usize]);
+            if sa < 0.0 && sb < 0.0 {
+                kept[0].push((a, b));
+            } else if sa > 0.0 && sb > 0.0 {
+                kept[1].push((a, b));
+            } else {
+                let x = self.cut_point(a, b);
+                let t = along.dot(self.pos[x as usize]);
+                let (from, to) = if sa < 0.0 { (0, 1) } else { (1, 0) };
+                kept[from].push((a, x));
+                kept[to].push((x, b));
+                // The positive side runs along the line the other way.
+                let signed = |h: usize| if h == 0 { t } else { -t };
+                crossings[from].push((signed(from), x, true));
+                crossings[to].push((signed(to), x, false));
+            }
+        }
+        let mut closing: [Vec<(u32, u32)>; 2] = [Vec::new(), Vec::new()];
+        for h in 0..sides {
+            let list = &mut crossings[h];
+            list.sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
+            // Along the line: where the boundary leaves the edges, then where it comes
+            // back, the face's inside between them, and so on.
+            for (k, pair) in list.chunks(2).enumerate() {
+                let [(t0, exit, true), (t1, entry, false)] = *pair else {
+                    return false;
+                };
+                if t1 <= t0 || list.get(2 * k + 2).is_some_and(|next| next.0 <= t1) {
+                    return false;
+                }
+                closing[h].push((exit, entry));
+            }
+        }
+        for h in 0..sides {
+            let mut edges = std::mem::take(&mut kept[h]);
+            edges.append(&mut closing[h]);
+            let plane = face.plane;
+            self.out[h].faces.push(Face { plane, edges });
+        }
+        true
+    }
+
+    fn face_as_triangles(&mut self, face: &Face, plane: &Plane) {
+        let rim: Vec<(u32, u32)> = face.edges.iter().map(|&(a, b)| (b, a)).collect();
+        for tri in triangulate_cap(&self.piece.pos, &rim, &face.plane) {
+            self.triangle(tri, face.plane.tag, plane);
+        }
+    }
 }
 
 /// The negative side of `piece` cut by `plane` and, with `both`, the positive side (as
-/// `clip` by the flipped plane would give it); `None` for a side the plane misses.
-fn cut(piece: &Piece, plane: &Plane, eps: f64, both: bool) -> [Option<Piece>; 2] {
+/// `clip` by the flipped plane would give it); `None` for a side the plane misses. With
+/// `keep_faces` the caps are left as [`Face`]s, else every face is triangulated.
+fn cut(piece: &Piece, plane: &Plane, eps: f64, both: bool, keep_faces: bool) -> [Option<Piece>; 2] {
     let tol = eps * plane.n.length();
     let s: Vec<f64> = piece
         .pos
@@ -87,90 +283,57 @@ fn cut(piece: &Piece, plane: &Plane, eps: f64, both: bool) -> [Option<Piece>; 2]
         pos: Vec::new(),
         tris: Vec::with_capacity(piece.tris.len() + 2 * extra),
         tags: Vec::with_capacity(piece.tris.len() + 2 * extra),
+        faces: Vec::with_capacity(piece.faces.len() + 1),
     };
-    let (mut neg_side, mut pos_side) = (side(), if both { side() } else { Piece::default() });
-    // Per vertex of `pos`: does it lie on the plane?
-    let mut on_plane: Vec<bool> = s.iter().map(|&v| v == 0.0).collect();
+    let on_plane: Vec<bool> = s.iter().map(|&v| v == 0.0).collect();
     let mut cuts: FastMap<(u32, u32), u32> = FastMap::default();
     cuts.reserve(64);
-
-    for (t, tri) in piece.tris.iter().enumerate() {
-        let sv = tri.map(|i| s[i as usize]);
-        let neg = sv.iter().filter(|&&v| v < 0.0).count();
-        let posc = sv.iter().filter(|&&v| v > 0.0).count();
-        let tag = piece.tags[t];
-        if posc == 0 && neg == 0 {
-            // A face lying in the plane bounds the side below it (the one it faces away
-            // from); a flat one bounds neither.
-            let [a, b, c] = tri.map(|i| piece.pos[i as usize]);
-            let facing = (b - a).cross(c - a).dot(plane.n);
-            if facing > 0.0 {
-                neg_side.tris.push(*tri);
-                neg_side.tags.push(tag);
-            } else if facing < 0.0 && both {
-                pos_side.tris.push(*tri);
-                pos_side.tags.push(tag);
-            }
-            continue;
-        }
-        if posc == 0 {
-            neg_side.tris.push(*tri);
-            neg_side.tags.push(tag);
-            continue;
-        }
-        if neg == 0 {
-            if both {
-                pos_side.tris.push(*tri);
-                pos_side.tags.push(tag);
-            }
-            continue;
-        }
-        // A straddling triangle: each side's part is at most a quadrilateral, the
-        // corners in the triangle's order, fanned from the first.
-        let mut polys: [[u32; 4]; 2] = [[0; 4]; 2];
-        let mut m = [0usize; 2];
-        for k in 0..3 {
-            let (i, j) = (tri[k], tri[(k + 1) % 3]);
-            let (si, sj) = (s[i as usize], s[j as usize]);
-            if si <= 0.0 {
-                polys[0][m[0]] = i;
-                m[0] += 1;
-            }
-            if si >= 0.0 {
-                polys[1][m[1]] = i;
-                m[1] += 1;
-            }
-            if (si < 0.0 && sj > 0.0) || (si > 0.0 && sj < 0.0) {
-                let key = (i.min(j), i.max(j));
-                let v = *cuts.entry(key).or_insert_with(|| {
-                    let (a, b) = key;
-                    let (pa, pb) = (piece.pos[a as usize], piece.pos[b as usize]);
-                    let (sa, sb) = (s[a as usize], s[b as usize]);
-                    let tt = sa / (sa - sb);
-                    pos.push(pa + (pb - pa) * tt);
-                    on_plane.push(true);
-                    (pos.len() - 1) as u32
-                });
-                for h in 0..2 {
-                    polys[h][m[h]] = v;
-                    m[h] += 1;
-                }
-            }
-        }
-        let sides = if both { 2 } else { 1 };
-        for (h, out) in [&mut neg_side, &mut pos_side]
-            .into_iter()
-            .enumerate()
-            .take(sides)
-        {
-            for k in 1..m[h] - 1 {
-                out.tris.push([polys[h][0], polys[h][k], polys[h][k + 1]]);
-                out.tags.push(tag);
-            }
-        }
+    let mut c = Cutter {
+        piece,
+        s,
+        pos,
+        on_plane,
+        cuts,
+        out: [side(), if both { side() } else { Piece::default() }],
+        both,
+    };
+    for (tri, &tag) in piece.tris.iter().zip(&piece.tags) {
+        c.triangle(*tri, tag, plane);
     }
+    for face in &piece.faces {
+        c.face(face, plane);
+    }
+    let Cutter {
+        pos,
+        on_plane,
+        cuts,
+        out: [mut neg_side, mut pos_side],
+        ..
+    } = c;
 
-    let neg_boundary = boundary_edges(&neg_side.tris, &on_plane, cuts.len());
+    let neg_boundary = boundary_edges(&neg_side, &on_plane, cuts.len());
+    let mut pos_piece = None;
+    if keep_faces {
+        let cap = |boundary: &[(u32, u32)], plane: Plane| Face {
+            plane,
+            edges: boundary.iter().map(|&(a, b)| (b, a)).collect(),
+        };
+        if !neg_boundary.is_empty() {
+            neg_side.faces.push(cap(&neg_boundary, *plane));
+        }
+        if both {
+            let pos_boundary = boundary_edges(&pos_side, &on_plane, cuts.len());
+            if !pos_boundary.is_empty() {
+                pos_side.faces.push(cap(&pos_boundary, plane.flipped()));
+            }
+            pos_side.pos.clone_from(&pos);
+            pos_side.compact();
+            pos_piece = Some(pos_side);
+        }
+        neg_side.pos = pos;
+        neg_side.compact();
+        return [Some(neg_side), pos_piece];
+    }
     let cap_of = |boundary: &[(u32, u32)], plane: &Plane| {
         if boundary.is_empty() {
             Vec::new()
@@ -179,9 +342,8 @@ fn cut(piece: &Piece, plane: &Plane, eps: f64, both: bool) -> [Option<Piece>; 2]
         }
     };
     let neg_cap = cap_of(&neg_boundary, plane);
-    let mut pos_piece = None;
     if both {
-        let pos_boundary = boundary_edges(&pos_side.tris, &on_plane, cuts.len());
+        let pos_boundary = boundary_edges(&pos_side, &on_plane, cuts.len());
         // The same loops reversed (as sets; each vertex starts one boundary edge)?
         let mut reversed: Vec<(u32, u32)> = neg_boundary.iter().map(|&(a, b)| (b, a)).collect();
         let mut mine = pos_boundary.clone();
@@ -197,6 +359,7 @@ fn cut(piece: &Piece, plane: &Plane, eps: f64, both: bool) -> [Option<Piece>; 2]
             .tags
             .extend(std::iter::repeat_n(plane.tag, cap.len()));
         pos_side.pos.clone_from(&pos);
+        pos_side.close_faces();
         pos_side.compact();
         pos_piece = Some(pos_side);
     }
@@ -205,32 +368,26 @@ fn cut(piece: &Piece, plane: &Plane, eps: f64, both: bool) -> [Option<Piece>; 2]
         .tags
         .extend(std::iter::repeat_n(plane.tag, neg_cap.len()));
     neg_side.pos = pos;
+    neg_side.close_faces();
     neg_side.compact();
     [Some(neg_side), pos_piece]
 }
 
-/// Boundary edges of a kept surface: directed edges whose reverse is missing. Both ends
-/// of a boundary edge lie on the plane, so only such edges are collected. `cuts` sizes
-/// the set.
-fn boundary_edges(tris: &[[u32; 3]], on_plane: &[bool], cuts: usize) -> Vec<(u32, u32)> {
+/// Boundary edges of a kept surface (triangles and faces): directed edges whose reverse
+/// is missing. Both ends of a boundary edge lie on the plane, so only such edges are
+/// collected. `cuts` sizes the set.
+fn boundary_edges(side: &Piece, on_plane: &[bool], cuts: usize) -> Vec<(u32, u32)> {
+    let on = |&(a, b): &(u32, u32)| on_plane[a as usize] && on_plane[b as usize];
+    let tri_edges = side
+        .tris
+        .iter()
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])]);
+    let face_edges = side.faces.iter().flat_map(|f| f.edges.iter().copied());
+    let edges = || tri_edges.clone().chain(face_edges.clone()).filter(on);
     let mut directed: FastSet<(u32, u32)> = FastSet::default();
     directed.reserve(2 * cuts + 16);
-    for t in tris {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            if on_plane[a as usize] && on_plane[b as usize] {
-                directed.insert((a, b));
-            }
-        }
-    }
-    let mut boundary = Vec::new();
-    for t in tris {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            if on_plane[a as usize] && on_plane[b as usize] && !directed.contains(&(b, a)) {
-                boundary.push((a, b));
-            }
-        }
-    }
-    boundary
+    directed.extend(edges());
+    edges()
+        .filter(|&(a, b)| !directed.contains(&(b, a)))
+        .collect()
 }

@@ -7,12 +7,15 @@ use std::hash::{BuildHasherDefault, Hasher};
 
 use glam::DVec3;
 
+use super::cap::triangulate_cap;
+use super::clip::Plane;
 use crate::TriMesh;
 
 /// Tag of a triangle on the original surface (not created by a cut).
 pub(crate) const SURFACE: u64 = u64::MAX;
 
-/// A closed solid being cut: welded positions, triangles and one tag per triangle.
+/// A closed solid being cut: welded positions, triangles and one tag per triangle, and
+/// possibly caps not yet triangulated ([`Face`]s; see [`Piece::close_faces`]).
 ///
 /// A tag is [`SURFACE`] for original surface triangles, or the id of the plane whose cap
 /// created the triangle (the methods give planes ids they can decode for bonds).
@@ -21,6 +24,22 @@ pub(crate) struct Piece {
     pub pos: Vec<DVec3>,
     pub tris: Vec<[u32; 3]>,
     pub tags: Vec<u64>,
+    pub faces: Vec<Face>,
+}
+
+/// A cap kept as a polygon: the region of `plane` bounded by `edges`, directed
+/// counter-clockwise seen from the side `plane.n` points to (outside the solid), so the
+/// region lies to the left of each edge. Its triangles will carry `plane.tag`.
+///
+/// A cell of a Voronoi fracture is cut by one plane after another; each cut crosses the
+/// caps of the earlier ones. Triangulated caps would gain a vertex wherever the cut
+/// crosses one of their diagonals, so caps grew to several times their corners and
+/// every later cut and cap paid for them. A polygon is cut by splitting its edges and
+/// closing each side along the cut line, and is triangulated once, at the end.
+#[derive(Debug, Clone)]
+pub(crate) struct Face {
+    pub plane: Plane,
+    pub edges: Vec<(u32, u32)>,
 }
 
 impl Piece {
@@ -48,7 +67,12 @@ impl Piece {
             .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
             .collect();
         let tags = vec![SURFACE; tris.len()];
-        Self { pos, tris, tags }
+        Self {
+            pos,
+            tris,
+            tags,
+            faces: Vec::new(),
+        }
     }
 
     /// Merges vertices at exactly equal positions and drops the triangles that then
@@ -56,6 +80,7 @@ impl Piece {
     /// meeting at one point). Each dropped triangle takes an edge and its reverse with
     /// it, so a closed piece stays closed.
     pub fn weld(&mut self) {
+        debug_assert!(self.faces.is_empty(), "weld a closed piece");
         let mut map: FastMap<[u64; 3], u32> = FastMap::default();
         map.reserve(self.pos.len());
         let mut pos = Vec::with_capacity(self.pos.len());
@@ -88,9 +113,22 @@ impl Piece {
         self.compact();
     }
 
-    /// `true` when the piece has no triangles.
+    /// `true` when the piece has no triangles and no faces.
     pub fn is_empty(&self) -> bool {
-        self.tris.is_empty()
+        self.tris.is_empty() && self.faces.is_empty()
+    }
+
+    /// Triangulates the [`Face`]s (see [`triangulate_cap`]), each triangle tagged with
+    /// its face's plane; afterwards the piece is triangles only.
+    pub fn close_faces(&mut self) {
+        for face in std::mem::take(&mut self.faces) {
+            // The cap's triangulation takes the edges as the solid's side sees them.
+            let rim: Vec<(u32, u32)> = face.edges.iter().map(|&(a, b)| (b, a)).collect();
+            let tris = triangulate_cap(&self.pos, &rim, &face.plane);
+            self.tags
+                .extend(std::iter::repeat_n(face.plane.tag, tris.len()));
+            self.tris.extend(tris);
+        }
     }
 
     /// Signed volume (positive for a closed outward solid).
@@ -108,18 +146,27 @@ impl Piece {
             / 6.0
     }
 
-    /// Drops vertices no triangle uses and renumbers the rest (order kept).
+    /// Drops vertices no triangle or face uses and renumbers the rest (in order of first
+    /// use).
     pub fn compact(&mut self) {
         let mut remap = vec![u32::MAX; self.pos.len()];
         let mut pos = Vec::new();
+        let old = &self.pos;
+        let mut renumber = |i: &mut u32| {
+            let r = &mut remap[*i as usize];
+            if *r == u32::MAX {
+                *r = pos.len() as u32;
+                pos.push(old[*i as usize]);
+            }
+            *i = *r;
+        };
         for t in &mut self.tris {
-            for i in t.iter_mut() {
-                let r = &mut remap[*i as usize];
-                if *r == u32::MAX {
-                    *r = pos.len() as u32;
-                    pos.push(self.pos[*i as usize]);
-                }
-                *i = *r;
+            t.iter_mut().for_each(&mut renumber);
+        }
+        for f in &mut self.faces {
+            for (a, b) in &mut f.edges {
+                renumber(a);
+                renumber(b);
             }
         }
         self.pos = pos;
@@ -128,6 +175,7 @@ impl Piece {
     /// Splits the piece into its edge-connected components, in order of their first
     /// triangle. Each component is compacted.
     pub fn components(self) -> Vec<Piece> {
+        debug_assert!(self.faces.is_empty(), "split a closed piece");
         let n = self.tris.len();
         let mut uf = UnionFind::new(n);
         // Undirected edge -> its first triangle: one map operation per edge.

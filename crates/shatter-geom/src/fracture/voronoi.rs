@@ -5,7 +5,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::bonds::cap_bonds;
-use super::clip::{Plane, clip};
+use super::clip::{Plane, clip, clip_keeping_faces};
 use super::piece::Piece;
 use super::types::Bond;
 
@@ -92,14 +92,16 @@ pub(crate) fn voronoi_with(
                     break;
                 }
                 let plane = planes.swap_remove(best);
-                if let Some(next) = clip(current, &plane, eps) {
+                if let Some(next) = clip_keeping_faces(current, &plane, eps) {
                     if next.is_empty() {
                         return Vec::new();
                     }
                     cell = Some(next);
                 }
             }
-            cell.unwrap_or_else(|| mesh.clone()).components()
+            let mut cell = cell.unwrap_or_else(|| mesh.clone());
+            cell.close_faces();
+            cell.components()
         })
         .collect();
     let cells: Vec<Piece> = per_seed.into_iter().flatten().collect();
@@ -275,6 +277,7 @@ fn box_piece(mesh: &Piece) -> Piece {
     Piece {
         pos,
         tags: vec![super::piece::SURFACE; 12],
+        faces: Vec::new(),
         tris,
     }
 }
