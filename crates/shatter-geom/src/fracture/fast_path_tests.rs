@@ -202,7 +202,7 @@ fn delaunay_neighbours_need_a_tetrahedralization() {
 
 /// Every directed edge has its reverse exactly once (a closed, consistently wound
 /// surface), and no triangle repeats a vertex.
-fn closed(p: &Piece) -> bool {
+pub(super) fn closed(p: &Piece) -> bool {
     let mut count = std::collections::HashMap::new();
     for t in &p.tris {
         if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {

@@ -28,6 +28,8 @@ mod validate;
 mod voronoi;
 
 #[cfg(test)]
+mod face_tests;
+#[cfg(test)]
 mod fast_path_tests;
 
 pub use entry::fracture;
