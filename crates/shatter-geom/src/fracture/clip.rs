@@ -67,6 +67,11 @@ pub(crate) fn split(piece: &Piece, plane: &Plane, eps: f64) -> [Option<Piece>; 2
     cut(piece, plane, eps, true, false)
 }
 
+/// [`split`], leaving both caps as [`Face`]s; the faces of `piece` are cut as polygons.
+pub(crate) fn split_keeping_faces(piece: &Piece, plane: &Plane, eps: f64) -> [Option<Piece>; 2] {
+    cut(piece, plane, eps, true, true)
+}
+
 /// The two sides of a cut being built: the positions (the piece's and the cut points),
 /// which of them lie on the plane, the cut point of each crossed edge, and the kept
 /// triangles and faces of each side (`out[0]` negative, `out[1]` positive).

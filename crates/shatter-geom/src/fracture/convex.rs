@@ -6,7 +6,7 @@
 
 use glam::DVec3;
 
-use super::clip::{Plane, split};
+use super::clip::{Plane, split_keeping_faces};
 use super::piece::{FastMap, Piece, SURFACE};
 
 /// Relative tolerance (of the fragment's size) for convexity tests.
@@ -46,6 +46,36 @@ fn decompose(piece: &Piece, first: (f64, Option<Plane>), tol: f64) -> Option<Vec
     if total <= 0.0 {
         return None;
     }
+    let mut work = Vec::new();
+    decompose_into(piece, first, tol, &mut work);
+    let pieces: Vec<Vec<DVec3>> = work
+        .into_iter()
+        .filter(|p| p.volume() >= MIN_PIECE_FRACTION * total)
+        .map(|p| p.pos)
+        .collect();
+    if pieces.is_empty() {
+        None
+    } else {
+        Some(pieces)
+    }
+}
+
+/// Every part [`decompose`] makes of `piece` (none dropped, caps left as faces), for
+/// tests: they are closed and their volumes add up to the piece's.
+#[cfg(test)]
+pub(crate) fn decomposition_parts(piece: &Piece) -> Vec<Piece> {
+    let tol = CONVEX_TOL * super::voronoi::mesh_scale(piece);
+    let first = worst_face(piece, tol);
+    if first.1.is_none() {
+        return vec![piece.clone()];
+    }
+    let mut parts = Vec::new();
+    decompose_into(piece, first, tol, &mut parts);
+    parts
+}
+
+/// The loop of [`decompose`]: the parts of `piece`, split worst first, into `out`.
+fn decompose_into(piece: &Piece, first: (f64, Option<Plane>), tol: f64, out: &mut Vec<Piece>) {
     let eps = 1e-10 * tol.max(f64::MIN_POSITIVE) / CONVEX_TOL;
     // (violation, face plane, piece)
     let mut work: Vec<(f64, Option<Plane>, Piece)> = vec![(first.0, first.1, piece.clone())];
@@ -63,7 +93,7 @@ fn decompose(piece: &Piece, first: (f64, Option<Plane>), tol: f64) -> Option<Vec
         let Some(plane) = plane else { break };
         let mut parts = Vec::new();
         let mut sides = 0;
-        for side in split(&p, &plane, eps) {
+        for side in split_keeping_faces(&p, &plane, eps) {
             if let Some(q) = side.filter(|q| !q.is_empty()) {
                 sides += 1;
                 parts.extend(components_with_worst_face(q, tol));
@@ -76,16 +106,7 @@ fn decompose(piece: &Piece, first: (f64, Option<Plane>), tol: f64) -> Option<Vec
         }
         work.extend(parts);
     }
-    let pieces: Vec<Vec<DVec3>> = work
-        .into_iter()
-        .filter(|(_, _, p)| p.volume() >= MIN_PIECE_FRACTION * total)
-        .map(|(_, _, p)| p.pos)
-        .collect();
-    if pieces.is_empty() {
-        None
-    } else {
-        Some(pieces)
-    }
+    out.extend(work.into_iter().map(|(_, _, p)| p));
 }
 
 /// The edge-connected components of `p`, each with its [`worst_face`]: pairing each
@@ -116,23 +137,37 @@ const NO_NEIGHBOUR: u32 = u32::MAX;
 
 /// Per triangle of `p`, the triangle across each edge `k` (`tri[k] → tri[k + 1]`), found
 /// by pairing each directed edge with its reverse (one map operation per edge; the map
-/// holds only the unpaired ones), and the union of the triangles so joined.
+/// holds only the unpaired ones), and the union of the triangles and faces so joined
+/// (face `f` is element `tris.len() + f`). An edge shared with a face has no neighbour
+/// triangle: a face is a cut, which makes no concave edge.
 fn neighbours(p: &Piece) -> (Vec<[u32; 3]>, super::piece::UnionFind) {
     let n = p.tris.len();
     let mut nbr = vec![[NO_NEIGHBOUR; 3]; n];
     let mut open: FastMap<u64, (u32, u8)> = FastMap::default();
-    open.reserve(3 * n / 2 + 1);
-    let mut uf = super::piece::UnionFind::new(n);
-    for (t, tri) in p.tris.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            if let Some((u, j)) = open.remove(&(u64::from(b) << 32 | u64::from(a))) {
-                nbr[t][k] = u;
+    let face_edges: usize = p.faces.iter().map(|f| f.edges.len()).sum();
+    open.reserve((3 * n + face_edges) / 2 + 1);
+    let mut uf = super::piece::UnionFind::new(n + p.faces.len());
+    // A face's edges carry slot 3, which names no triangle edge.
+    let edges = p
+        .tris
+        .iter()
+        .enumerate()
+        .flat_map(|(t, tri)| (0..3).map(move |k| (t, k as u8, tri[k], tri[(k + 1) % 3])))
+        .chain(
+            p.faces
+                .iter()
+                .enumerate()
+                .flat_map(|(f, face)| face.edges.iter().map(move |&(a, b)| (n + f, 3u8, a, b))),
+        );
+    for (t, k, a, b) in edges {
+        if let Some((u, j)) = open.remove(&(u64::from(b) << 32 | u64::from(a))) {
+            if k < 3 && j < 3 {
+                nbr[t][k as usize] = u;
                 nbr[u as usize][j as usize] = t as u32;
-                uf.union(t, u as usize);
-            } else {
-                open.insert(u64::from(a) << 32 | u64::from(b), (t as u32, k as u8));
             }
+            uf.union(t, u as usize);
+        } else {
+            open.insert(u64::from(a) << 32 | u64::from(b), (t as u32, k));
         }
     }
     (nbr, uf)

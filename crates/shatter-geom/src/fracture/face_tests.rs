@@ -185,3 +185,52 @@ fn voronoi_cells_are_the_same_solids_with_faces_as_with_caps() {
         );
     }
 }
+
+/// Every directed edge of the triangles and faces has its reverse exactly once.
+fn closed_with_faces(p: &Piece) -> bool {
+    let mut count = HashMap::new();
+    let tri_edges = p
+        .tris
+        .iter()
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])]);
+    let face_edges = p.faces.iter().flat_map(|f| f.edges.iter().copied());
+    for e in tri_edges.chain(face_edges) {
+        *count.entry(e).or_insert(0i32) += 1;
+    }
+    count
+        .iter()
+        .all(|(&(a, b), &n)| a != b && n == 1 && count.get(&(b, a)) == Some(&1))
+}
+
+#[test]
+fn convex_decomposition_parts_with_faces_are_closed_and_add_up() {
+    let bird = Piece::from_mesh_welded(&shapes::bird());
+    let mut rng = ChaCha8Rng::seed_from_u64(4);
+    let (lo, hi) = super::seeds::bounds(&bird.pos);
+    let seeds: Vec<DVec3> = (0..40)
+        .map(|_| lo + (hi - lo) * DVec3::new(rng.random(), rng.random(), rng.random()))
+        .collect();
+    let (cells, _) = super::voronoi::voronoi(&bird, &seeds, DVec3::ONE, 1e-10);
+    let mut decomposed = 0;
+    for (i, cell) in cells.iter().enumerate() {
+        let parts = super::convex::decomposition_parts(cell);
+        if parts.len() > 1 {
+            decomposed += 1;
+            assert!(
+                parts.iter().any(|p| !p.faces.is_empty()),
+                "cell {i}: no faces"
+            );
+        }
+        for (k, p) in parts.iter().enumerate() {
+            assert!(closed_with_faces(p), "cell {i} part {k} is not closed");
+            assert!(p.volume() > 0.0, "cell {i} part {k}: volume {}", p.volume());
+        }
+        let sum: f64 = parts.iter().map(Piece::volume).sum();
+        let whole = cell.volume();
+        assert!(
+            (sum - whole).abs() <= 1e-9 * whole,
+            "cell {i}: parts {sum} vs {whole}"
+        );
+    }
+    assert!(decomposed >= 5, "only {decomposed} cells were decomposed");
+}

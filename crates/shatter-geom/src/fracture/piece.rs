@@ -131,19 +131,27 @@ impl Piece {
         }
     }
 
-    /// Signed volume (positive for a closed outward solid).
+    /// Signed volume (positive for a closed outward solid), faces included: each face
+    /// edge makes a triangle with the face's first vertex, and these triangles add up
+    /// to the face's polygon (holes and several loops included).
     pub fn volume(&self) -> f64 {
         let Some(&o) = self.pos.first() else {
             return 0.0;
         };
-        self.tris
+        let tet = |a: u32, b: u32, c: u32| {
+            let [a, b, c] = [a, b, c].map(|i| self.pos[i as usize] - o);
+            a.dot(b.cross(c))
+        };
+        let tris: f64 = self.tris.iter().map(|t| tet(t[0], t[1], t[2])).sum();
+        let faces: f64 = self
+            .faces
             .iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|i| self.pos[i as usize] - o);
-                a.dot(b.cross(c))
+            .filter_map(|f| {
+                let &(apex, _) = f.edges.first()?;
+                Some(f.edges.iter().map(|&(a, b)| tet(apex, a, b)).sum::<f64>())
             })
-            .sum::<f64>()
-            / 6.0
+            .sum();
+        (tris + faces) / 6.0
     }
 
     /// Drops vertices no triangle or face uses and renumbers the rest (in order of first
@@ -196,23 +204,30 @@ impl Piece {
         self.into_groups(&mut uf).0
     }
 
-    /// Splits the piece into the groups of triangles that `uf` (over its triangles)
-    /// joins, in order of their first triangle, each compacted; also returns each
-    /// triangle's group.
+    /// Splits the piece into the groups of triangles and faces that `uf` joins (over the
+    /// triangles, then the faces: face `f` is element `tris.len() + f`), in order of
+    /// their first element, each compacted; also returns each triangle's group.
     pub fn into_groups(self, uf: &mut UnionFind) -> (Vec<Piece>, Vec<usize>) {
         let n = self.tris.len();
-        let mut group_of_root = vec![usize::MAX; n];
+        let mut group_of_root = vec![usize::MAX; n + self.faces.len()];
         let mut group = vec![0; n];
         let mut out: Vec<Piece> = Vec::new();
-        for t in 0..n {
-            let r = uf.find(t);
+        let mut group_of = |x: usize, out: &mut Vec<Piece>| {
+            let r = uf.find(x);
             if group_of_root[r] == usize::MAX {
                 group_of_root[r] = out.len();
                 out.push(Piece::default());
             }
-            group[t] = group_of_root[r];
+            group_of_root[r]
+        };
+        for t in 0..n {
+            group[t] = group_of(t, &mut out);
             out[group[t]].tris.push(self.tris[t]);
             out[group[t]].tags.push(self.tags[t]);
+        }
+        for (f, face) in self.faces.into_iter().enumerate() {
+            let g = group_of(n + f, &mut out);
+            out[g].faces.push(face);
         }
         if let [only] = out.as_mut_slice() {
             // One group: the positions move instead of being copied.
