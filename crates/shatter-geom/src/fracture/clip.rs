@@ -83,6 +83,9 @@ struct Cutter<'a> {
     on_plane: Vec<bool>,
     cuts: FastMap<(u32, u32), u32>,
     out: [Piece; 2],
+    /// Per side, the edges of what is kept that run between two cut points: when no
+    /// vertex of the piece lies on the plane, exactly its boundary.
+    rims: [Vec<(u32, u32)>; 2],
     both: bool,
 }
 
@@ -139,6 +142,9 @@ impl Cutter<'_> {
         // corners in the triangle's order, fanned from the first.
         let mut polys: [[u32; 4]; 2] = [[0; 4]; 2];
         let mut m = [0usize; 2];
+        // Where the cut points went in each side's part.
+        let mut at = [[0usize; 2]; 2];
+        let mut cuts = [0usize; 2];
         for k in 0..3 {
             let (i, j) = (tri[k], tri[(k + 1) % 3]);
             let (si, sj) = (sv[k], sv[(k + 1) % 3]);
@@ -153,12 +159,20 @@ impl Cutter<'_> {
             if (si < 0.0 && sj > 0.0) || (si > 0.0 && sj < 0.0) {
                 let v = self.cut_point(i, j);
                 for h in 0..2 {
+                    at[h][cuts[h] & 1] = m[h];
+                    cuts[h] += 1;
                     polys[h][m[h]] = v;
                     m[h] += 1;
                 }
             }
         }
         for h in 0..2 {
+            if cuts[h] == 2 && (h == 0 || self.both) {
+                // The two cut points follow each other round the part.
+                let [p, q] = at[h];
+                let (a, b) = if q == p + 1 { (p, q) } else { (q, p) };
+                self.rims[h].push((polys[h][a], polys[h][b]));
+            }
             for k in 1..m[h] - 1 {
                 self.keep(h, [polys[h][0], polys[h][k], polys[h][k + 1]], tag);
             }
@@ -243,6 +257,7 @@ impl Cutter<'_> {
             }
         }
         for h in 0..sides {
+            self.rims[h].extend_from_slice(&closing[h]);
             let mut edges = std::mem::take(&mut kept[h]);
             edges.append(&mut closing[h]);
             let plane = face.plane;
@@ -291,6 +306,9 @@ fn cut(piece: &Piece, plane: &Plane, eps: f64, both: bool, keep_faces: bool) -> 
         faces: Vec::with_capacity(piece.faces.len() + 1),
     };
     let on_plane: Vec<bool> = s.iter().map(|&v| v == 0.0).collect();
+    // With a vertex on the plane, kept edges can lie in it: the boundary is then found
+    // by pairing edges; otherwise it is the edges between cut points.
+    let any_on_plane = on_plane.contains(&true);
     let mut cuts: FastMap<(u32, u32), u32> = FastMap::default();
     cuts.reserve(64);
     let mut c = Cutter {
@@ -300,6 +318,7 @@ fn cut(piece: &Piece, plane: &Plane, eps: f64, both: bool, keep_faces: bool) -> 
         on_plane,
         cuts,
         out: [side(), if both { side() } else { Piece::default() }],
+        rims: [Vec::new(), Vec::new()],
         both,
     };
     for (tri, &tag) in piece.tris.iter().zip(&piece.tags) {
@@ -313,10 +332,26 @@ fn cut(piece: &Piece, plane: &Plane, eps: f64, both: bool, keep_faces: bool) -> 
         on_plane,
         cuts,
         out: [mut neg_side, mut pos_side],
+        rims: [neg_rim, pos_rim],
         ..
     } = c;
+    let boundary = |side: &Piece, rim: Vec<(u32, u32)>| {
+        if any_on_plane {
+            boundary_edges(side, &on_plane, cuts.len())
+        } else {
+            // (Checked in every test run against the pairing it replaces.)
+            debug_assert!({
+                let mut paired = boundary_edges(side, &on_plane, cuts.len());
+                let mut mine = rim.clone();
+                paired.sort_unstable();
+                mine.sort_unstable();
+                paired == mine
+            });
+            rim
+        }
+    };
 
-    let neg_boundary = boundary_edges(&neg_side, &on_plane, cuts.len());
+    let neg_boundary = boundary(&neg_side, neg_rim);
     let mut pos_piece = None;
     if keep_faces {
         let cap = |boundary: &[(u32, u32)], plane: Plane| Face {
@@ -327,7 +362,7 @@ fn cut(piece: &Piece, plane: &Plane, eps: f64, both: bool, keep_faces: bool) -> 
             neg_side.faces.push(cap(&neg_boundary, *plane));
         }
         if both {
-            let pos_boundary = boundary_edges(&pos_side, &on_plane, cuts.len());
+            let pos_boundary = boundary(&pos_side, pos_rim);
             if !pos_boundary.is_empty() {
                 pos_side.faces.push(cap(&pos_boundary, plane.flipped()));
             }
@@ -348,7 +383,7 @@ fn cut(piece: &Piece, plane: &Plane, eps: f64, both: bool, keep_faces: bool) -> 
     };
     let neg_cap = cap_of(&neg_boundary, plane);
     if both {
-        let pos_boundary = boundary_edges(&pos_side, &on_plane, cuts.len());
+        let pos_boundary = boundary(&pos_side, pos_rim);
         // The same loops reversed (as sets; each vertex starts one boundary edge)?
         let mut reversed: Vec<(u32, u32)> = neg_boundary.iter().map(|&(a, b)| (b, a)).collect();
         let mut mine = pos_boundary.clone();
