@@ -160,3 +160,14 @@ fn bad_parameters_are_refused() {
         Err(FractureError::BadInput { what: "plane", .. })
     ));
 }
+
+#[test]
+fn slivers_without_a_bonded_neighbour_are_merged_too() {
+    // Dense radial cells graze the sphere's surface and cut off slivers (down to 1e-19 of
+    // its volume) whose shared faces are too small to bond; they are merged into the
+    // nearest fragment instead of reaching the physics.
+    let mesh = builtin::by_name("sphere").unwrap();
+    let fr = fracture(&mesh, &voronoi(250, Pattern::Radial, 6)).unwrap();
+    check_fracture(&mesh, mesh.volume(), &fr, 1e-6, "sphere radial 250");
+    assert!(fr.warnings.is_empty(), "{:?}", fr.warnings);
+}

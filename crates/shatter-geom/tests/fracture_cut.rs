@@ -179,6 +179,28 @@ fn slicing_torus_flat_gives_rings_with_holed_caps() {
 }
 
 #[test]
+fn a_cap_cut_into_two_regions_leaves_two_fragments() {
+    // The first plane leaves an L-shaped cap; the second cuts off both arms' tips, so
+    // on its far side the cap is two regions, one per tip, which must not join them.
+    let mesh = l_block();
+    let tips = DVec3::new(1.0, 1.0, 0.0).normalize();
+    let fr = fracture(
+        &mesh,
+        &planes(vec![
+            (DVec3::new(0.0, 0.0, 0.5), DVec3::Z),
+            (DVec3::new(1.1, 1.1, 0.0), tips),
+        ]),
+    )
+    .unwrap();
+    check_fracture(&mesh, L_VOLUME, &fr, 1e-9, "L-block, tips cut off");
+    // Two layers of: the body and the two tips.
+    assert_eq!(fr.fragments.len(), 6);
+    for (i, f) in fr.fragments.iter().enumerate() {
+        assert_eq!(shells(&f.mesh), 1, "fragment {i} is not one piece");
+    }
+}
+
+#[test]
 fn planes_through_vertices_edges_and_faces() {
     let mesh = unit_cube();
     // A diagonal plane through two opposite edges (vertices exactly on it).

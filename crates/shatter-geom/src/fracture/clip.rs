@@ -57,12 +57,13 @@ pub(crate) fn clip_keeping_faces(piece: &Piece, plane: &Plane, eps: f64) -> Opti
 }
 
 /// Both sides of `piece` cut by `plane`: `[clip(piece, plane), clip(piece, flipped)]`
-/// (the same pieces), made in one pass with the cut points and the cap computed once.
+/// (the same pieces), made in one pass with the cut points computed once.
 ///
 /// Both sides' caps are the part of the plane with the solid on both sides, so one is
 /// the other reversed: the sides share their cut points, and faces lying in the plane
-/// are kept by one side only. The positive side checks that its boundary is the
-/// negative one's reversed before taking its cap, and triangulates its own otherwise.
+/// are kept by one side only. (Only the tests use it closed; the decomposition and
+/// slicing keep the caps as faces, [`split_keeping_faces`].)
+#[cfg(test)]
 pub(crate) fn split(piece: &Piece, plane: &Plane, eps: f64) -> [Option<Piece>; 2] {
     cut(piece, plane, eps, true, false)
 }
@@ -331,7 +332,7 @@ fn cut(piece: &Piece, plane: &Plane, eps: f64, both: bool, keep_faces: bool) -> 
         pos,
         on_plane,
         cuts,
-        out: [mut neg_side, mut pos_side],
+        out: [neg_side, pos_side],
         rims: [neg_rim, pos_rim],
         ..
     } = c;
@@ -351,66 +352,26 @@ fn cut(piece: &Piece, plane: &Plane, eps: f64, both: bool, keep_faces: bool) -> 
         }
     };
 
-    let neg_boundary = boundary(&neg_side, neg_rim);
-    let mut pos_piece = None;
-    if keep_faces {
-        let cap = |boundary: &[(u32, u32)], plane: Plane| Face {
-            plane,
-            edges: boundary.iter().map(|&(a, b)| (b, a)).collect(),
-        };
-        if !neg_boundary.is_empty() {
-            neg_side.faces.push(cap(&neg_boundary, *plane));
-        }
-        if both {
-            let pos_boundary = boundary(&pos_side, pos_rim);
-            if !pos_boundary.is_empty() {
-                pos_side.faces.push(cap(&pos_boundary, plane.flipped()));
-            }
-            pos_side.pos.clone_from(&pos);
-            pos_side.compact();
-            pos_piece = Some(pos_side);
-        }
-        neg_side.pos = pos;
-        neg_side.compact();
-        return [Some(neg_side), pos_piece];
-    }
-    let cap_of = |boundary: &[(u32, u32)], plane: &Plane| {
-        if boundary.is_empty() {
-            Vec::new()
-        } else {
-            triangulate_cap(&pos, boundary, plane)
-        }
+    // Each side's cap is the face its boundary bounds; the two are one region of the
+    // plane, seen from either side.
+    let cap = |boundary: Vec<(u32, u32)>, plane: Plane| Face {
+        plane,
+        edges: boundary.into_iter().map(|(a, b)| (b, a)).collect(),
     };
-    let neg_cap = cap_of(&neg_boundary, plane);
-    if both {
-        let pos_boundary = boundary(&pos_side, pos_rim);
-        // The same loops reversed (as sets; each vertex starts one boundary edge)?
-        let mut reversed: Vec<(u32, u32)> = neg_boundary.iter().map(|&(a, b)| (b, a)).collect();
-        let mut mine = pos_boundary.clone();
-        reversed.sort_unstable();
-        mine.sort_unstable();
-        let cap: Vec<[u32; 3]> = if reversed == mine {
-            neg_cap.iter().map(|t| [t[0], t[2], t[1]]).collect()
-        } else {
-            cap_of(&pos_boundary, &plane.flipped())
-        };
-        pos_side.tris.extend_from_slice(&cap);
-        pos_side
-            .tags
-            .extend(std::iter::repeat_n(plane.tag, cap.len()));
-        pos_side.pos.clone_from(&pos);
-        pos_side.close_faces();
-        pos_side.compact();
-        pos_piece = Some(pos_side);
-    }
-    neg_side.tris.extend_from_slice(&neg_cap);
-    neg_side
-        .tags
-        .extend(std::iter::repeat_n(plane.tag, neg_cap.len()));
-    neg_side.pos = pos;
-    neg_side.close_faces();
-    neg_side.compact();
-    [Some(neg_side), pos_piece]
+    let finish = |mut side: Piece, rim: Vec<(u32, u32)>, plane: Plane, pos: Vec<DVec3>| {
+        let boundary = boundary(&side, rim);
+        if !boundary.is_empty() {
+            side.faces.push(cap(boundary, plane));
+        }
+        side.pos = pos;
+        side.compact();
+        if !keep_faces {
+            side.close_faces();
+        }
+        side
+    };
+    let pos_piece = both.then(|| finish(pos_side, pos_rim, plane.flipped(), pos.clone()));
+    [Some(finish(neg_side, neg_rim, *plane, pos)), pos_piece]
 }
 
 /// Boundary edges of a kept surface (triangles and faces): directed edges whose reverse

@@ -154,7 +154,7 @@ fn finish_cut(
     let (pieces, bonds, lonely) = merge_small(pieces, bonds, SLIVER_VOLUME_FRACTION * volume);
     if lonely > 0 {
         warnings.push(format!(
-            "{lonely} fragments below the sliver threshold had no neighbour to merge into"
+            "{lonely} fragments below the sliver threshold had no other fragment to merge into"
         ));
     }
     // Independent per fragment, so in parallel (order kept).

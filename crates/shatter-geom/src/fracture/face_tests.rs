@@ -224,6 +224,14 @@ fn convex_decomposition_parts_with_faces_are_closed_and_add_up() {
         for (k, p) in parts.iter().enumerate() {
             assert!(closed_with_faces(p), "cell {i} part {k} is not closed");
             assert!(p.volume() > 0.0, "cell {i} part {k}: volume {}", p.volume());
+            // One solid (triangulated, its parts cannot hide behind a shared face).
+            let mut whole = p.clone();
+            whole.close_faces();
+            assert_eq!(
+                whole.components().len(),
+                1,
+                "cell {i} part {k} is in pieces"
+            );
         }
         let sum: f64 = parts.iter().map(Piece::volume).sum();
         let whole = cell.volume();

@@ -9,10 +9,11 @@ use super::piece::{Piece, UnionFind};
 use super::types::Bond;
 
 /// Merges every piece whose volume is below `min_volume` into the bonded neighbour it
-/// shares the largest area with (repeatedly, smallest first). A merged fragment is the
-/// union of its closed shells (each still closed and outward; the faces they share are
-/// kept, back to back). Returns the new pieces, bonds (remapped, each pair once) and the
-/// number of small pieces that had no neighbour to merge into.
+/// shares the largest area with (repeatedly, smallest first), or, with no bonded
+/// neighbour, into the piece nearest to it. A merged fragment is the union of its
+/// closed shells (each still closed and outward; the faces they share are kept, back to
+/// back). Returns the new pieces, bonds (remapped, each pair once) and the number of
+/// small pieces left (only when there is no other piece to merge into).
 pub(crate) fn merge_small(
     pieces: Vec<Piece>,
     bonds: Vec<Bond>,
@@ -58,6 +59,42 @@ pub(crate) fn merge_small(
         }
         if !changed {
             break;
+        }
+    }
+    // Small groups with no bonded neighbour: their faces with the rest are below the
+    // bonds' area threshold (a sliver cut off where a cell grazes the surface). Each is
+    // merged into the group with the vertex nearest its centroid, which it touches or
+    // nearly, so that nothing below the threshold reaches the physics.
+    for &i in &order {
+        let g = uf.find(i);
+        if vol[g] >= min_volume {
+            continue;
+        }
+        let (mut sum, mut count) = (DVec3::ZERO, 0usize);
+        for (j, p) in pieces.iter().enumerate() {
+            if uf.find(j) == g {
+                sum += p.pos.iter().copied().sum::<DVec3>();
+                count += p.pos.len();
+            }
+        }
+        let centroid = sum / count.max(1) as f64;
+        let mut nearest: Option<(f64, usize)> = None;
+        for (j, p) in pieces.iter().enumerate() {
+            let h = uf.find(j);
+            if h == g {
+                continue;
+            }
+            for q in &p.pos {
+                let d2 = q.distance_squared(centroid);
+                if nearest.is_none_or(|(best, _)| d2 < best) {
+                    nearest = Some((d2, h));
+                }
+            }
+        }
+        if let Some((_, h)) = nearest {
+            let v = vol[g] + vol[h];
+            uf.union(g, h);
+            vol[uf.find(g)] = v;
         }
     }
     let mut lonely = 0;

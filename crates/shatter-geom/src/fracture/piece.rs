@@ -42,6 +42,31 @@ pub(crate) struct Face {
     pub edges: Vec<(u32, u32)>,
 }
 
+impl Face {
+    /// Whether the edges form one simple loop (each vertex starting one edge, all in one
+    /// cycle).
+    pub fn is_one_loop(&self) -> bool {
+        let mut edges = self.edges.clone();
+        edges.sort_unstable();
+        if edges.is_empty() || edges.windows(2).any(|w| w[0].0 == w[1].0) {
+            return false;
+        }
+        let (start, mut v) = edges[0];
+        let mut steps = 1;
+        while v != start {
+            match edges.binary_search_by(|e| e.0.cmp(&v)) {
+                Ok(k) => v = edges[k].1,
+                Err(_) => return false,
+            }
+            steps += 1;
+            if steps > edges.len() {
+                return false;
+            }
+        }
+        steps == edges.len()
+    }
+}
+
 impl Piece {
     /// A piece from a mesh, welding vertices at exactly equal positions; all triangles
     /// are surface triangles.
@@ -122,13 +147,31 @@ impl Piece {
     /// its face's plane; afterwards the piece is triangles only.
     pub fn close_faces(&mut self) {
         for face in std::mem::take(&mut self.faces) {
-            // The cap's triangulation takes the edges as the solid's side sees them.
-            let rim: Vec<(u32, u32)> = face.edges.iter().map(|&(a, b)| (b, a)).collect();
-            let tris = triangulate_cap(&self.pos, &rim, &face.plane);
-            self.tags
-                .extend(std::iter::repeat_n(face.plane.tag, tris.len()));
-            self.tris.extend(tris);
+            self.triangulate(&face);
         }
+    }
+
+    /// Triangulates the faces bounded by more than one loop. A face can then be several
+    /// regions (a cut across both arms of a U), or one with holes; only its triangles
+    /// tell which, so they, not the face, connect the piece's parts in
+    /// [`Piece::components`].
+    pub fn close_faces_with_several_loops(&mut self) {
+        let (one, several): (Vec<Face>, Vec<Face>) = std::mem::take(&mut self.faces)
+            .into_iter()
+            .partition(|f| f.is_one_loop());
+        self.faces = one;
+        for face in several {
+            self.triangulate(&face);
+        }
+    }
+
+    fn triangulate(&mut self, face: &Face) {
+        // The cap's triangulation takes the edges as the solid's side sees them.
+        let rim: Vec<(u32, u32)> = face.edges.iter().map(|&(a, b)| (b, a)).collect();
+        let tris = triangulate_cap(&self.pos, &rim, &face.plane);
+        self.tags
+            .extend(std::iter::repeat_n(face.plane.tag, tris.len()));
+        self.tris.extend(tris);
     }
 
     /// Signed volume (positive for a closed outward solid), faces included: each face
@@ -180,24 +223,36 @@ impl Piece {
         self.pos = pos;
     }
 
-    /// Splits the piece into its edge-connected components, in order of their first
-    /// triangle. Each component is compacted.
-    pub fn components(self) -> Vec<Piece> {
-        debug_assert!(self.faces.is_empty(), "split a closed piece");
+    /// Splits the piece into its edge-connected components (triangles and faces), in
+    /// order of their first triangle, then face. Each component is compacted. Faces of
+    /// several loops are triangulated first.
+    pub fn components(mut self) -> Vec<Piece> {
+        self.close_faces_with_several_loops();
         let n = self.tris.len();
-        let mut uf = UnionFind::new(n);
-        // Undirected edge -> its first triangle: one map operation per edge.
+        let mut uf = UnionFind::new(n + self.faces.len());
+        // Undirected edge -> its first element (triangle, or face `n + f`): one map
+        // operation per edge.
         let mut edge_owner: FastMap<u64, usize> = FastMap::default();
-        edge_owner.reserve(3 * n / 2 + 1);
-        for (t, tri) in self.tris.iter().enumerate() {
-            for k in 0..3 {
-                let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                let key = u64::from(a.min(b)) << 32 | u64::from(a.max(b));
-                match edge_owner.entry(key) {
-                    Entry::Occupied(o) => uf.union(*o.get(), t),
-                    Entry::Vacant(v) => {
-                        v.insert(t);
-                    }
+        let face_edges: usize = self.faces.iter().map(|f| f.edges.len()).sum();
+        edge_owner.reserve((3 * n + face_edges) / 2 + 1);
+        let tri_edges = self.tris.iter().enumerate().flat_map(|(t, tri)| {
+            [
+                (t, tri[0], tri[1]),
+                (t, tri[1], tri[2]),
+                (t, tri[2], tri[0]),
+            ]
+        });
+        let face_edges = self
+            .faces
+            .iter()
+            .enumerate()
+            .flat_map(|(f, face)| face.edges.iter().map(move |&(a, b)| (n + f, a, b)));
+        for (t, a, b) in tri_edges.chain(face_edges) {
+            let key = u64::from(a.min(b)) << 32 | u64::from(a.max(b));
+            match edge_owner.entry(key) {
+                Entry::Occupied(o) => uf.union(*o.get(), t),
+                Entry::Vacant(v) => {
+                    v.insert(t);
                 }
             }
         }

@@ -5,7 +5,7 @@ use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
 use super::bonds::cap_bonds;
-use super::clip::{Plane, split};
+use super::clip::{Plane, split_keeping_faces};
 use super::piece::Piece;
 use super::seeds::{bounds, unit_vector};
 use super::types::Bond;
@@ -28,7 +28,8 @@ pub(crate) fn random_planes(mesh: &Piece, k: usize, rng: &mut ChaCha8Rng) -> Vec
 }
 
 /// Cuts `mesh` by every plane `(point, normal)` in turn, each plane cutting all current
-/// pieces; returns the fragments (connected components) and their bonds.
+/// pieces; returns the fragments (connected components) and their bonds. The caps are
+/// kept as faces (polygons) until the last plane.
 pub(crate) fn slice(mesh: &Piece, planes: &[(DVec3, DVec3)], eps: f64) -> (Vec<Piece>, Vec<Bond>) {
     let mut pieces = vec![mesh.clone()];
     let unit: Vec<(DVec3, DVec3)> = planes.iter().map(|&(p, n)| (p, n.normalize())).collect();
@@ -40,7 +41,7 @@ pub(crate) fn slice(mesh: &Piece, planes: &[(DVec3, DVec3)], eps: f64) -> (Vec<P
         };
         let mut next = Vec::with_capacity(pieces.len() * 2);
         for piece in pieces {
-            match split(&piece, &plane, eps) {
+            match split_keeping_faces(&piece, &plane, eps) {
                 // Entirely on one side.
                 [None, _] | [_, None] => next.push(piece),
                 [Some(neg), Some(pos)] => {
@@ -53,6 +54,10 @@ pub(crate) fn slice(mesh: &Piece, planes: &[(DVec3, DVec3)], eps: f64) -> (Vec<P
             }
         }
         pieces = next;
+    }
+    // The caps stayed polygons through the later planes; one triangulation each.
+    for piece in &mut pieces {
+        piece.close_faces();
     }
     let scale = mesh_scale(mesh);
     let plane_of = |tag: u64| {
