@@ -113,8 +113,8 @@ fn decompose_into(piece: &Piece, first: (f64, Option<Plane>), tol: f64, out: &mu
 /// directed edge with its reverse serves both (it joins the two triangles and gives the
 /// vertex across the edge).
 fn components_with_worst_face(mut p: Piece, tol: f64) -> Vec<(f64, Option<Plane>, Piece)> {
-    // A face of several loops may be several regions: its triangles tell.
-    p.close_faces_with_several_loops();
+    // A face of several loops may be several regions.
+    p.faces_into_regions();
     let n = p.tris.len();
     let (nbr, mut uf) = neighbours(&p);
     // Per triangle, its worst violation beyond `tol` and the plane.

@@ -43,27 +43,68 @@ pub(crate) struct Face {
 }
 
 impl Face {
-    /// Whether the edges form one simple loop (each vertex starting one edge, all in one
-    /// cycle).
-    pub fn is_one_loop(&self) -> bool {
+    /// The face's loops, each as its directed edges; `None` when a vertex starts more
+    /// than one edge or an edge leads nowhere (loops touching at a point, or worse).
+    fn loops(&self) -> Option<Vec<Vec<(u32, u32)>>> {
         let mut edges = self.edges.clone();
         edges.sort_unstable();
-        if edges.is_empty() || edges.windows(2).any(|w| w[0].0 == w[1].0) {
-            return false;
+        if edges.windows(2).any(|w| w[0].0 == w[1].0) {
+            return None;
         }
-        let (start, mut v) = edges[0];
-        let mut steps = 1;
-        while v != start {
-            match edges.binary_search_by(|e| e.0.cmp(&v)) {
-                Ok(k) => v = edges[k].1,
-                Err(_) => return false,
+        let mut used = vec![false; edges.len()];
+        let mut loops = Vec::new();
+        for first in 0..edges.len() {
+            if used[first] {
+                continue;
             }
-            steps += 1;
-            if steps > edges.len() {
-                return false;
+            let mut lp = Vec::new();
+            let mut k = first;
+            while !used[k] {
+                used[k] = true;
+                lp.push(edges[k]);
+                k = edges.binary_search_by(|e| e.0.cmp(&edges[k].1)).ok()?;
             }
+            if k != first {
+                return None;
+            }
+            loops.push(lp);
         }
-        steps == edges.len()
+        Some(loops)
+    }
+
+    /// The face as one face per region, when that is plain from its loops: one loop, or
+    /// loops all counter-clockwise (no holes, so each bounds a region of its own).
+    /// `None` when a loop runs clockwise (a hole, which belongs to some other loop's
+    /// region) or the loops touch.
+    fn regions(&self, pos: &[DVec3]) -> Option<Vec<Face>> {
+        let loops = self.loops()?;
+        let plane = self.plane;
+        if loops.len() == 1 {
+            return Some(
+                loops
+                    .into_iter()
+                    .map(|edges| Face { plane, edges })
+                    .collect(),
+            );
+        }
+        let n = plane.n;
+        let counter_clockwise = |lp: &[(u32, u32)]| {
+            let o = pos[lp[0].0 as usize];
+            let area: DVec3 = lp
+                .iter()
+                .map(|&(a, b)| (pos[a as usize] - o).cross(pos[b as usize] - o))
+                .sum();
+            area.dot(n) > 0.0
+        };
+        if !loops.iter().all(|lp| counter_clockwise(lp)) {
+            return None;
+        }
+        Some(
+            loops
+                .into_iter()
+                .map(|edges| Face { plane, edges })
+                .collect(),
+        )
     }
 }
 
@@ -151,17 +192,16 @@ impl Piece {
         }
     }
 
-    /// Triangulates the faces bounded by more than one loop. A face can then be several
-    /// regions (a cut across both arms of a U), or one with holes; only its triangles
-    /// tell which, so they, not the face, connect the piece's parts in
-    /// [`Piece::components`].
-    pub fn close_faces_with_several_loops(&mut self) {
-        let (one, several): (Vec<Face>, Vec<Face>) = std::mem::take(&mut self.faces)
-            .into_iter()
-            .partition(|f| f.is_one_loop());
-        self.faces = one;
-        for face in several {
-            self.triangulate(&face);
+    /// Makes each face one region: a face of several loops can be several regions (a
+    /// cut across both arms of a U), which as one face would join the piece's parts in
+    /// [`Piece::components`]. Loops without holes become a face each; a face with holes
+    /// or touching loops is triangulated (its triangles tell which loop goes with which).
+    pub fn faces_into_regions(&mut self) {
+        for face in std::mem::take(&mut self.faces) {
+            match face.regions(&self.pos) {
+                Some(regions) => self.faces.extend(regions),
+                None => self.triangulate(&face),
+            }
         }
     }
 
@@ -225,9 +265,10 @@ impl Piece {
 
     /// Splits the piece into its edge-connected components (triangles and faces), in
     /// order of their first triangle, then face. Each component is compacted. Faces of
-    /// several loops are triangulated first.
+    /// several loops are made one face per region first
+    /// ([`Piece::faces_into_regions`]).
     pub fn components(mut self) -> Vec<Piece> {
-        self.close_faces_with_several_loops();
+        self.faces_into_regions();
         let n = self.tris.len();
         let mut uf = UnionFind::new(n + self.faces.len());
         // Undirected edge -> its first element (triangle, or face `n + f`): one map
