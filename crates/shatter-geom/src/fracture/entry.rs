@@ -160,6 +160,7 @@ fn finish_cut(
     // Independent per fragment, so in parallel (order kept).
     let fragments = pieces
         .into_par_iter()
+        .with_max_len(1)
         .map(|mut p| {
             p.weld();
             fragment(&p)

@@ -44,8 +44,11 @@ pub(crate) fn voronoi_with(
         Plane { n, d, tag }
     };
     let bounding_box = box_piece(mesh);
+    // One task per cell (not runs of cells): a thread descheduled by the host then
+    // holds up one cell, not a run of them the other threads cannot steal.
     let per_seed: Vec<Vec<Piece>> = (0..seeds.len())
         .into_par_iter()
+        .with_max_len(1)
         .map(|i| {
             let Some(planes) = cell_planes(
                 i,
