@@ -117,18 +117,20 @@ fn components_with_worst_face(mut p: Piece, tol: f64) -> Vec<(f64, Option<Plane>
     p.faces_into_regions();
     let n = p.tris.len();
     let (nbr, mut uf) = neighbours(&p);
-    // Per triangle, its worst violation beyond `tol` and the plane.
-    let worst: Vec<(f64, Option<Plane>)> = (0..n)
-        .map(|t| concavity(&p, t, &nbr, tol).map_or((tol, None), |(v, plane)| (v, Some(plane))))
+    // The triangles violating convexity beyond `tol` (few: most edges are convex), with
+    // their violation and plane, in triangle order.
+    let concave: Vec<(usize, f64, Plane)> = (0..n)
+        .filter_map(|t| concavity(&p, t, &nbr, tol).map(|(v, plane)| (t, v, plane)))
         .collect();
     let (parts, group) = p.into_groups(&mut uf);
     let mut out: Vec<(f64, Option<Plane>, Piece)> =
         parts.into_iter().map(|q| (tol, None, q)).collect();
-    for (&g, &(violation, plane)) in group.iter().zip(&worst) {
+    for (t, violation, plane) in concave {
         // The first triangle with the largest violation, as worst_face picks it.
+        let g = group[t];
         if violation > out[g].0 {
             out[g].0 = violation;
-            out[g].1 = plane;
+            out[g].1 = Some(plane);
         }
     }
     out
