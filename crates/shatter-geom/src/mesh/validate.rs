@@ -89,7 +89,9 @@ impl TriMesh {
     /// ```
     pub fn validate_solid(&self) -> Result<(), MeshError> {
         self.validate_indices()?;
-        let r = self.check();
+        // The topology and the self-intersection search are independent, so they run at
+        // once (rayon); a topology error still comes first.
+        let (r, crossing) = rayon::join(|| self.check(), || self.self_intersections(usize::MAX));
         if r.boundary_edges > 0 {
             return Err(MeshError::BoundaryEdges(r.boundary_edges));
         }
@@ -102,7 +104,6 @@ impl TriMesh {
         if r.non_manifold_vertices > 0 {
             return Err(MeshError::NonManifoldVertices(r.non_manifold_vertices));
         }
-        let crossing = self.self_intersections(usize::MAX);
         if let Some(&first) = crossing.first() {
             return Err(MeshError::SelfIntersecting {
                 pairs: crossing.len(),
