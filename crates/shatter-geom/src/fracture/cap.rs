@@ -145,15 +145,10 @@ pub(crate) fn ear_clip(
     if n < 3 {
         return None;
     }
-    // The edges by their first vertex (sorted, no hashing): each vertex starts one.
-    let mut edges = boundary.to_vec();
-    edges.sort_unstable();
-    if edges.windows(2).any(|w| w[0].0 == w[1].0) {
-        return None;
-    }
+    let loops = loops(boundary)?;
     // Two loop vertices at one point (cuts meeting on an edge, loops touching): leave
     // it to the CDT, which merges them.
-    let mut keys: Vec<[u64; 3]> = edges
+    let mut keys: Vec<[u64; 3]> = boundary
         .iter()
         .map(|&(a, _)| {
             // +0.0 and -0.0 are the same point.
@@ -165,11 +160,26 @@ pub(crate) fn ear_clip(
     if keys.windows(2).any(|w| w[0] == w[1]) {
         return None;
     }
-    let slot = |v: u32| edges.binary_search_by(|e| e.0.cmp(&v)).ok();
-    // Walk the loops; together they must use every edge once.
-    let mut used = vec![false; n];
     let mut out = Vec::with_capacity(n);
-    for first in 0..n {
+    for lp in loops {
+        out.extend(ear_clip_loop(pos, lp, to2)?);
+    }
+    Some(out)
+}
+
+/// The loops of a set of directed edges, each as its vertices in edge order; `None`
+/// unless every vertex starts exactly one edge and the edges close up into cycles (they
+/// are grouped by first vertex by sorting, with no hashing).
+pub(crate) fn loops(edges: &[(u32, u32)]) -> Option<Vec<Vec<u32>>> {
+    let mut edges = edges.to_vec();
+    edges.sort_unstable();
+    if edges.windows(2).any(|w| w[0].0 == w[1].0) {
+        return None;
+    }
+    let slot = |v: u32| edges.binary_search_by(|e| e.0.cmp(&v)).ok();
+    let mut used = vec![false; edges.len()];
+    let mut out = Vec::new();
+    for first in 0..edges.len() {
         if used[first] {
             continue;
         }
@@ -188,7 +198,7 @@ pub(crate) fn ear_clip(
             }
             k = slot(v)?;
         }
-        out.extend(ear_clip_loop(pos, lp, to2)?);
+        out.push(lp);
     }
     Some(out)
 }

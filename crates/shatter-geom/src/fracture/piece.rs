@@ -7,7 +7,7 @@ use std::hash::{BuildHasherDefault, Hasher};
 
 use glam::DVec3;
 
-use super::cap::triangulate_cap;
+use super::cap::{loops, triangulate_cap};
 use super::clip::Plane;
 use crate::TriMesh;
 
@@ -43,66 +43,35 @@ pub(crate) struct Face {
 }
 
 impl Face {
-    /// The face's loops, each as its directed edges; `None` when a vertex starts more
-    /// than one edge or an edge leads nowhere (loops touching at a point, or worse).
-    fn loops(&self) -> Option<Vec<Vec<(u32, u32)>>> {
-        let mut edges = self.edges.clone();
-        edges.sort_unstable();
-        if edges.windows(2).any(|w| w[0].0 == w[1].0) {
-            return None;
-        }
-        let mut used = vec![false; edges.len()];
-        let mut loops = Vec::new();
-        for first in 0..edges.len() {
-            if used[first] {
-                continue;
-            }
-            let mut lp = Vec::new();
-            let mut k = first;
-            while !used[k] {
-                used[k] = true;
-                lp.push(edges[k]);
-                k = edges.binary_search_by(|e| e.0.cmp(&edges[k].1)).ok()?;
-            }
-            if k != first {
-                return None;
-            }
-            loops.push(lp);
-        }
-        Some(loops)
-    }
-
     /// The face as one face per region, when that is plain from its loops: one loop, or
     /// loops all counter-clockwise (no holes, so each bounds a region of its own).
     /// `None` when a loop runs clockwise (a hole, which belongs to some other loop's
     /// region) or the loops touch.
     fn regions(&self, pos: &[DVec3]) -> Option<Vec<Face>> {
-        let loops = self.loops()?;
-        let plane = self.plane;
-        if loops.len() == 1 {
-            return Some(
-                loops
-                    .into_iter()
-                    .map(|edges| Face { plane, edges })
-                    .collect(),
-            );
-        }
-        let n = plane.n;
-        let counter_clockwise = |lp: &[(u32, u32)]| {
-            let o = pos[lp[0].0 as usize];
-            let area: DVec3 = lp
-                .iter()
-                .map(|&(a, b)| (pos[a as usize] - o).cross(pos[b as usize] - o))
+        let loops = loops(&self.edges)?;
+        let counter_clockwise = |lp: &[u32]| {
+            let o = pos[lp[0] as usize];
+            let area: DVec3 = (0..lp.len())
+                .map(|k| (pos[lp[k] as usize] - o).cross(pos[lp[(k + 1) % lp.len()] as usize] - o))
                 .sum();
-            area.dot(n) > 0.0
+            area.dot(self.plane.n) > 0.0
         };
-        if !loops.iter().all(|lp| counter_clockwise(lp)) {
+        if loops.len() > 1 && !loops.iter().all(|lp| counter_clockwise(lp)) {
             return None;
         }
+        let plane = self.plane;
+        let edges = |lp: Vec<u32>| {
+            (0..lp.len())
+                .map(|k| (lp[k], lp[(k + 1) % lp.len()]))
+                .collect()
+        };
         Some(
             loops
                 .into_iter()
-                .map(|edges| Face { plane, edges })
+                .map(|lp| Face {
+                    plane,
+                    edges: edges(lp),
+                })
                 .collect(),
         )
     }
