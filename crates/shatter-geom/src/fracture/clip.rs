@@ -91,7 +91,7 @@ struct Cutter<'a> {
 }
 
 impl Cutter<'_> {
-    /// The cut point of the crossed edge `a b` (one per undirected edge, computed from
+    /// The cut point of the crossed edge `i j` (one per undirected edge, computed from
     /// its lower-indexed end, so every triangle and face of the edge shares it).
     fn cut_point(&mut self, i: u32, j: u32) -> u32 {
         let key = (i.min(j), i.max(j));

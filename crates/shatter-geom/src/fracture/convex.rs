@@ -20,12 +20,27 @@ const MAX_PIECES: usize = 16;
 /// with no edge concave beyond the tolerance is one piece: for a connected, embedded
 /// closed surface, convex edges everywhere mean a convex solid.
 pub(crate) fn convex_pieces(piece: &Piece) -> Vec<Vec<DVec3>> {
-    let tol = CONVEX_TOL * super::voronoi::mesh_scale(piece);
-    let first = worst_face(piece, tol);
-    if first.1.is_none() {
+    let total = piece.volume();
+    let parts = if total > 0.0 {
+        decomposition_parts(piece)
+    } else {
+        None
+    };
+    let Some(parts) = parts else {
         return vec![piece.pos.clone()];
+    };
+    // Pieces under `MIN_PIECE_FRACTION` of the fragment are dropped (their volume is
+    // negligible for collision).
+    let pieces: Vec<Vec<DVec3>> = parts
+        .into_iter()
+        .filter(|p| p.volume() >= MIN_PIECE_FRACTION * total)
+        .map(|p| p.pos)
+        .collect();
+    if pieces.is_empty() {
+        vec![piece.pos.clone()]
+    } else {
+        pieces
     }
-    decompose(piece, first, tol).unwrap_or_else(|| vec![piece.pos.clone()])
 }
 
 /// Volume of the tetrahedron `[a, b, c, d]` (signed).
@@ -36,45 +51,24 @@ pub(crate) fn tet_volume(p: [DVec3; 4]) -> f64 {
 /// Outward faces of a positively oriented tetrahedron, indexed by the opposite vertex.
 pub(crate) const TET_FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
 
-/// Splits a concave solid along the plane of its most violated face (the face with a
-/// vertex farthest in front of it), again and again, worst piece first, until every
-/// piece is convex within `tol` or `MAX_PIECES` is reached. The clipping is exact, so
-/// the pieces cover the fragment without gaps; pieces under `MIN_PIECE_FRACTION` of it
-/// are dropped (their volume is negligible for collision).
-fn decompose(piece: &Piece, first: (f64, Option<Plane>), tol: f64) -> Option<Vec<Vec<DVec3>>> {
-    let total = piece.volume();
-    if total <= 0.0 {
-        return None;
-    }
-    let mut work = Vec::new();
-    decompose_into(piece, first, tol, &mut work);
-    let pieces: Vec<Vec<DVec3>> = work
-        .into_iter()
-        .filter(|p| p.volume() >= MIN_PIECE_FRACTION * total)
-        .map(|p| p.pos)
-        .collect();
-    if pieces.is_empty() {
-        None
-    } else {
-        Some(pieces)
-    }
-}
-
-/// Every part [`decompose`] makes of `piece` (none dropped, caps left as faces), for
-/// tests: they are closed and their volumes add up to the piece's.
-#[cfg(test)]
-pub(crate) fn decomposition_parts(piece: &Piece) -> Vec<Piece> {
+/// The parts of a concave solid (none dropped, their caps left as faces: closed, their
+/// volumes adding up to the solid's); `None` when it is convex within the tolerance.
+///
+/// It is split along the plane of its most violated face (the face with a vertex
+/// farthest in front of it), again and again, worst part first, until every part is
+/// convex within the tolerance or `MAX_PIECES` is reached. The clipping is exact, so
+/// the parts cover the solid without gaps.
+pub(crate) fn decomposition_parts(piece: &Piece) -> Option<Vec<Piece>> {
     let tol = CONVEX_TOL * super::voronoi::mesh_scale(piece);
     let first = worst_face(piece, tol);
-    if first.1.is_none() {
-        return vec![piece.clone()];
-    }
+    first.1?;
     let mut parts = Vec::new();
     decompose_into(piece, first, tol, &mut parts);
-    parts
+    Some(parts)
 }
 
-/// The loop of [`decompose`]: the parts of `piece`, split worst first, into `out`.
+/// The loop of [`decomposition_parts`]: the parts of `piece`, split worst first, into
+/// `out`.
 fn decompose_into(piece: &Piece, first: (f64, Option<Plane>), tol: f64, out: &mut Vec<Piece>) {
     let eps = 1e-10 * tol.max(f64::MIN_POSITIVE) / CONVEX_TOL;
     // (violation, face plane, piece)
