@@ -3,7 +3,6 @@
 
 use glam::DVec3;
 
-use super::cap::triangulate_cap;
 use super::piece::{Face, FastMap, FastSet, Piece};
 
 /// An oriented plane `n · x = d`; its negative side `n · x < d` is kept by [`clip`].
@@ -268,8 +267,7 @@ impl Cutter<'_> {
     }
 
     fn face_as_triangles(&mut self, face: &Face, plane: &Plane) {
-        let rim: Vec<(u32, u32)> = face.edges.iter().map(|&(a, b)| (b, a)).collect();
-        for tri in triangulate_cap(&self.piece.pos, &rim, &face.plane) {
+        for tri in face.triangles(&self.piece.pos) {
             self.triangle(tri, face.plane.tag, plane);
         }
     }
@@ -379,12 +377,7 @@ fn cut(piece: &Piece, plane: &Plane, eps: f64, both: bool, keep_faces: bool) -> 
 /// collected. `cuts` sizes the set.
 fn boundary_edges(side: &Piece, on_plane: &[bool], cuts: usize) -> Vec<(u32, u32)> {
     let on = |&(a, b): &(u32, u32)| on_plane[a as usize] && on_plane[b as usize];
-    let tri_edges = side
-        .tris
-        .iter()
-        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])]);
-    let face_edges = side.faces.iter().flat_map(|f| f.edges.iter().copied());
-    let edges = || tri_edges.clone().chain(face_edges.clone()).filter(on);
+    let edges = || side.edges().map(|(_, _, a, b)| (a, b)).filter(on);
     let mut directed: FastSet<(u32, u32)> = FastSet::default();
     directed.reserve(2 * cuts + 16);
     directed.extend(edges());

@@ -142,22 +142,10 @@ fn neighbours(p: &Piece) -> (Vec<[u32; 3]>, super::piece::UnionFind) {
     let n = p.tris.len();
     let mut nbr = vec![[NO_NEIGHBOUR; 3]; n];
     let mut open: FastMap<u64, (u32, u8)> = FastMap::default();
-    let face_edges: usize = p.faces.iter().map(|f| f.edges.len()).sum();
-    open.reserve((3 * n + face_edges) / 2 + 1);
+    open.reserve(p.edge_count() / 2 + 1);
     let mut uf = super::piece::UnionFind::new(n + p.faces.len());
     // A face's edges carry slot 3, which names no triangle edge.
-    let edges = p
-        .tris
-        .iter()
-        .enumerate()
-        .flat_map(|(t, tri)| (0..3).map(move |k| (t, k as u8, tri[k], tri[(k + 1) % 3])))
-        .chain(
-            p.faces
-                .iter()
-                .enumerate()
-                .flat_map(|(f, face)| face.edges.iter().map(move |&(a, b)| (n + f, 3u8, a, b))),
-        );
-    for (t, k, a, b) in edges {
+    for (t, k, a, b) in p.edges() {
         if let Some((u, j)) = open.remove(&(u64::from(b) << 32 | u64::from(a))) {
             if k < 3 && j < 3 {
                 nbr[t][k as usize] = u;

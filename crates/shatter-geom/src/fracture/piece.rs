@@ -43,6 +43,14 @@ pub(crate) struct Face {
 }
 
 impl Face {
+    /// The face's triangles ([`triangulate_cap`]), wound like the face, as indices into
+    /// `pos`.
+    pub fn triangles(&self, pos: &[DVec3]) -> Vec<[u32; 3]> {
+        // The cap's triangulation takes the edges as the solid's side sees them.
+        let rim: Vec<(u32, u32)> = self.edges.iter().map(|&(a, b)| (b, a)).collect();
+        triangulate_cap(pos, &rim, &self.plane)
+    }
+
     /// The face as one face per region, when that is plain from its loops: one loop, or
     /// loops all counter-clockwise (no holes, so each bounds a region of its own).
     /// `None` when a loop runs clockwise (a hole, which belongs to some other loop's
@@ -175,12 +183,31 @@ impl Piece {
     }
 
     fn triangulate(&mut self, face: &Face) {
-        // The cap's triangulation takes the edges as the solid's side sees them.
-        let rim: Vec<(u32, u32)> = face.edges.iter().map(|&(a, b)| (b, a)).collect();
-        let tris = triangulate_cap(&self.pos, &rim, &face.plane);
+        let tris = face.triangles(&self.pos);
         self.tags
             .extend(std::iter::repeat_n(face.plane.tag, tris.len()));
         self.tris.extend(tris);
+    }
+
+    /// Every directed edge: `(owner, slot, from, to)` for edge `slot` (`tri[slot] →
+    /// tri[slot + 1]`) of triangle `owner`, then for the faces' edges, whose owner is
+    /// `tris.len() + f` for face `f` and whose slot is 3 (naming no triangle edge).
+    pub fn edges(&self) -> impl Iterator<Item = (usize, u8, u32, u32)> + Clone + '_ {
+        let n = self.tris.len();
+        let tri_edges = self.tris.iter().enumerate().flat_map(|(t, tri)| {
+            (0..3u8).map(move |k| (t, k, tri[k as usize], tri[(k as usize + 1) % 3]))
+        });
+        let face_edges = self
+            .faces
+            .iter()
+            .enumerate()
+            .flat_map(move |(f, face)| face.edges.iter().map(move |&(a, b)| (n + f, 3, a, b)));
+        tri_edges.chain(face_edges)
+    }
+
+    /// Number of [`Piece::edges`].
+    pub fn edge_count(&self) -> usize {
+        3 * self.tris.len() + self.faces.iter().map(|f| f.edges.len()).sum::<usize>()
     }
 
     /// Signed volume (positive for a closed outward solid), faces included: each face
@@ -243,21 +270,8 @@ impl Piece {
         // Undirected edge -> its first element (triangle, or face `n + f`): one map
         // operation per edge.
         let mut edge_owner: FastMap<u64, usize> = FastMap::default();
-        let face_edges: usize = self.faces.iter().map(|f| f.edges.len()).sum();
-        edge_owner.reserve((3 * n + face_edges) / 2 + 1);
-        let tri_edges = self.tris.iter().enumerate().flat_map(|(t, tri)| {
-            [
-                (t, tri[0], tri[1]),
-                (t, tri[1], tri[2]),
-                (t, tri[2], tri[0]),
-            ]
-        });
-        let face_edges = self
-            .faces
-            .iter()
-            .enumerate()
-            .flat_map(|(f, face)| face.edges.iter().map(move |&(a, b)| (n + f, a, b)));
-        for (t, a, b) in tri_edges.chain(face_edges) {
+        edge_owner.reserve(self.edge_count() / 2 + 1);
+        for (t, _, a, b) in self.edges() {
             let key = u64::from(a.min(b)) << 32 | u64::from(a.max(b));
             match edge_owner.entry(key) {
                 Entry::Occupied(o) => uf.union(*o.get(), t),
