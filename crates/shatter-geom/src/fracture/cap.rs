@@ -6,6 +6,7 @@ use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 
 use super::clip::Plane;
 use super::piece::FastMap;
+use crate::mesh::position_key;
 
 /// An orthonormal frame `(u, v)` of the plane with `u × v` along `n`.
 pub(crate) fn plane_frame(n: DVec3) -> (DVec3, DVec3) {
@@ -150,11 +151,7 @@ pub(crate) fn ear_clip(
     // it to the CDT, which merges them.
     let mut keys: Vec<[u64; 3]> = boundary
         .iter()
-        .map(|&(a, _)| {
-            // +0.0 and -0.0 are the same point.
-            let q = pos[a as usize];
-            [q.x + 0.0, q.y + 0.0, q.z + 0.0].map(f64::to_bits)
-        })
+        .map(|&(a, _)| position_key(pos[a as usize]))
         .collect();
     keys.sort_unstable();
     if keys.windows(2).any(|w| w[0] == w[1]) {

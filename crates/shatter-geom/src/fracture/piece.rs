@@ -10,6 +10,7 @@ use glam::DVec3;
 use super::cap::{loops, triangulate_cap};
 use super::clip::Plane;
 use crate::TriMesh;
+use crate::mesh::position_key;
 
 /// Tag of a triangle on the original surface (not created by a cut).
 pub(crate) const SURFACE: u64 = u64::MAX;
@@ -95,9 +96,7 @@ impl Piece {
             .positions
             .iter()
             .map(|p| {
-                // +0.0 and -0.0 are the same point.
-                let key = [p.x + 0.0, p.y + 0.0, p.z + 0.0].map(f64::to_bits);
-                *map.entry(key).or_insert_with(|| {
+                *map.entry(position_key(*p)).or_insert_with(|| {
                     pos.push(*p);
                     (pos.len() - 1) as u32
                 })
@@ -131,8 +130,7 @@ impl Piece {
             .pos
             .iter()
             .map(|p| {
-                let key = [p.x + 0.0, p.y + 0.0, p.z + 0.0].map(f64::to_bits);
-                *map.entry(key).or_insert_with(|| {
+                *map.entry(position_key(*p)).or_insert_with(|| {
                     pos.push(*p);
                     (pos.len() - 1) as u32
                 })

@@ -8,6 +8,7 @@ mod shells;
 mod trimesh;
 mod validate;
 mod weld;
+pub(crate) use weld::position_key;
 mod winding;
 
 pub use check::MeshReport;

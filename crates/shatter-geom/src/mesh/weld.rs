@@ -8,7 +8,7 @@ use super::TriMesh;
 
 /// Hash key of a position: the bit patterns of its coordinates, with `-0.0` read as `0.0`
 /// so that exactly equal coordinates always share a key.
-fn position_key(p: DVec3) -> [u64; 3] {
+pub(crate) fn position_key(p: DVec3) -> [u64; 3] {
     [
         (p.x + 0.0).to_bits(),
         (p.y + 0.0).to_bits(),
