@@ -42,10 +42,10 @@ fn run(points: &[DVec3]) -> Result<(), Box<dyn std::error::Error>> {
     let cpu = cpu_secs() - c0;
     let secs = t0.elapsed().as_secs_f64();
     let peak = status_kb("VmHWM:").unwrap_or(0);
-    let result_bytes = t.tetrahedra.len() * 32 + t.representative.len() * 4;
+    let result_bytes = t.heap_bytes();
     println!(
         "{n:>9} points {:>9} tets {:>8.1} ms wall {:>8.1} ms cpu {:>5.2} Mpts/s(cpu)  peak +{:>6.1} B/pt  result {:>6.1} B/pt",
-        t.tetrahedra.len(),
+        t.len(),
         secs * 1e3,
         cpu * 1e3,
         n as f64 / cpu / 1e6,

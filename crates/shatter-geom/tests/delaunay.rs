@@ -184,12 +184,27 @@ fn offset_by_1e6_and_scaled_by_1e_minus_9() {
     check(&both);
 }
 
+/// Points on two skew lines have only one tetrahedralization, with `(m - 1)²` tetrahedra
+/// for `m` points per line: far more than the storage first reserves (about 7 per point).
+#[test]
+fn two_skew_lines_need_quadratic_tetrahedra() {
+    let m = 60;
+    let mut p = Vec::new();
+    for i in 0..m {
+        p.push(DVec3::new(i as f64, 0.0, 0.0));
+        p.push(DVec3::new(0.0, i as f64 * 0.5, 7.0));
+    }
+    let t = check(&p);
+    assert_eq!(t.len(), (m - 1) * (m - 1));
+    assert!(t.len() > 7 * p.len() + 1024);
+}
+
 #[test]
 fn single_tetrahedron_and_orientation() {
     let p = [DVec3::ZERO, DVec3::X, DVec3::Z, DVec3::Y];
     let t = check(&p);
-    assert_eq!(t.tetrahedra.len(), 1);
-    let v = t.tetrahedra[0].map(|i| p[i as usize].to_array());
+    assert_eq!(t.len(), 1);
+    let v = t.tetrahedron(0).map(|i| p[i as usize].to_array());
     assert!(orient(&v[0], &v[1], &v[2], &v[3]) > 0.0);
     assert_eq!(t.hull_faces().len(), 4);
 }
@@ -287,32 +302,35 @@ fn validate_rejects_broken_results() {
 
     // A flipped tetrahedron.
     let mut bad = good.clone();
-    bad.tetrahedra[3].swap(0, 1);
+    let mut v = bad.tetrahedron(3);
+    v.swap(0, 1);
+    bad.set_tetrahedron(3, v);
     assert!(bad.validate(&p).is_err());
 
     // A broken adjacency.
     let mut bad = good.clone();
-    let t = (0..bad.neighbors.len())
-        .find(|&t| bad.neighbors[t][0] != NO_NEIGHBOR)
+    let t = (0..bad.len())
+        .find(|&t| bad.neighbors(t)[0] != NO_NEIGHBOR)
         .unwrap();
-    bad.neighbors[t][0] = NO_NEIGHBOR;
+    bad.set_neighbor(t, 0, NO_NEIGHBOR);
     assert!(bad.validate(&p).is_err());
 
     // A non-Delaunay configuration: move the far vertex of a neighbour to the centroid of
     // the first tetrahedron (deep inside its circumsphere), keeping the connectivity.
     let mut q = p.clone();
-    let (t, n) = (0..good.tetrahedra.len())
+    let (t, n) = (0..good.len())
         .find_map(|t| {
-            let n = good.neighbors[t][0];
+            let n = good.neighbors(t)[0];
             (n != NO_NEIGHBOR).then_some((t, n as usize))
         })
         .unwrap();
-    let far = good.tetrahedra[n]
-        .iter()
-        .copied()
-        .find(|v| !good.tetrahedra[t].contains(v))
+    let far = good
+        .tetrahedron(n)
+        .into_iter()
+        .find(|v| !good.tetrahedron(t).contains(v))
         .unwrap();
-    let c: DVec3 = good.tetrahedra[t]
+    let c: DVec3 = good
+        .tetrahedron(t)
         .iter()
         .map(|&v| p[v as usize])
         .sum::<DVec3>()

@@ -390,8 +390,7 @@ fn the_result_does_not_depend_on_the_number_of_threads() {
 /// Volume of the convex hull of `pts` (the sum of its Delaunay tetrahedra).
 fn hull_volume(pts: &[DVec3]) -> f64 {
     let t = shatter_geom::delaunay::tetrahedralize(pts).unwrap();
-    t.tetrahedra
-        .iter()
+    t.tetrahedra()
         .map(|q| {
             let [a, b, c, d] = q.map(|i| pts[i as usize]);
             (b - a).dot((c - a).cross(d - a)).abs() / 6.0

@@ -108,7 +108,7 @@ fn concave_meshes_keep_exactly_the_inside_tetrahedra() {
         let del = tetrahedralize(&welded.positions).unwrap();
         let mut kept = 0.0;
         let mut count = 0;
-        for t in &del.tetrahedra {
+        for t in del.tetrahedra() {
             let p = t.map(|i| welded.positions[i as usize]);
             let c = (p[0] + p[1] + p[2] + p[3]) / 4.0;
             if welded.winding_number(c) > 0.5 {
@@ -130,8 +130,7 @@ fn concave_meshes_keep_exactly_the_inside_tetrahedra() {
         );
         // Concavity is kept: the result is smaller than the points' hull.
         let hull: f64 = del
-            .tetrahedra
-            .iter()
+            .tetrahedra()
             .map(|t| {
                 let p = t.map(|i| welded.positions[i as usize]);
                 (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])) / 6.0

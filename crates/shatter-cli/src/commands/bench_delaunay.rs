@@ -82,7 +82,7 @@ pub fn run(args: &BenchDelaunayArgs) -> Result<(), CliError> {
         let row = Row {
             points: n,
             unique_points: tets.unique_points,
-            tetrahedra: tets.tetrahedra.len(),
+            tetrahedra: tets.len(),
             millis,
             points_per_second: n as f64 / (millis / 1e3).max(1e-9),
             peak_bytes_per_point,

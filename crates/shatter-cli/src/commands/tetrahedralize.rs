@@ -120,7 +120,7 @@ pub fn run(args: &TetrahedralizeArgs) -> Result<(), CliError> {
         points: points.len(),
         unique_points: tets.unique_points,
         duplicates: points.len() - tets.unique_points,
-        tetrahedra: tets.tetrahedra.len(),
+        tetrahedra: tets.len(),
         millis,
     };
     if config.json {
@@ -150,7 +150,7 @@ fn write_tets(path: &std::path::Path, tets: &Tetrahedralization) -> Result<(), C
     let write = || -> std::io::Result<()> {
         let file = std::fs::File::create(path)?;
         let mut w = std::io::BufWriter::new(file);
-        for t in &tets.tetrahedra {
+        for t in tets.tetrahedra() {
             let [a, b, c, d] = t.map(|i| first_occurrence(tets, i));
             writeln!(w, "{a} {b} {c} {d}")?;
         }

@@ -3,9 +3,10 @@
 use glam::DVec3;
 use robust::Coord;
 
-use super::insert::Location;
+use super::insert::{Inserted, Location};
 use super::order::brio_order;
 use super::output::finish;
+use super::packed::{Narrow, Store, Wide};
 use super::predicates::{MAX_MAGNITUDE, MIN_MAGNITUDE, orient};
 use super::storage::Mesh;
 use super::types::{DelaunayError, Tetrahedralization};
@@ -30,9 +31,19 @@ use super::types::{DelaunayError, Tetrahedralization};
 /// assert!((t.volume(&pts) - 1.0).abs() < 1e-12);
 /// ```
 pub fn tetrahedralize(points: &[DVec3]) -> Result<Tetrahedralization, DelaunayError> {
+    tetrahedralize_within(points, usize::MAX)
+}
+
+/// [`tetrahedralize`] with at most `narrow_limit` tetrahedra in the narrow layout before
+/// moving to the wide one (below 5: wide from the start). Tests lower it to exercise both
+/// layouts and the move on small inputs.
+pub(crate) fn tetrahedralize_within(
+    points: &[DVec3],
+    narrow_limit: usize,
+) -> Result<Tetrahedralization, DelaunayError> {
     check_input(points)?;
     let n = points.len();
-    if n >= (1 << 30) - 1 {
+    if n >= (1 << 30) - 2 {
         return Err(DelaunayError::TooLarge { points: n });
     }
     if n < 4 {
@@ -44,8 +55,7 @@ pub fn tetrahedralize(points: &[DVec3]) -> Result<Tetrahedralization, DelaunayEr
     let mut pts = Vec::with_capacity(n + 1);
     pts.push([f64::NAN; 3]);
     pts.extend(order.iter().map(|&i| points[i as usize].to_array()));
-    let mut mesh = Mesh::new(pts);
-    let first = first_simplex(&mesh.pts).ok_or_else(|| {
+    let first = first_simplex(&pts).ok_or_else(|| {
         let distinct = count_distinct(points);
         if distinct < 4 {
             DelaunayError::TooFewPoints { distinct }
@@ -53,6 +63,32 @@ pub fn tetrahedralize(points: &[DVec3]) -> Result<Tetrahedralization, DelaunayEr
             DelaunayError::AllCoplanar { distinct }
         }
     })?;
+    // Merged duplicates as (internal slot, internal vertex it coincides with).
+    let mut dups: Vec<(u32, u32)> = Vec::new();
+    let too_large = DelaunayError::TooLarge { points: n };
+    if n <= Narrow::MAX_POINTS && narrow_limit >= 5 {
+        let mut mesh = Mesh::<Narrow>::new(pts, narrow_limit);
+        start(&mut mesh, first);
+        let Some(full) = insert_from(&mut mesh, (1, None), first, &mut dups) else {
+            return Ok(finish(mesh, order, &dups));
+        };
+        let mut mesh = mesh.into_wide(usize::MAX);
+        match insert_from(&mut mesh, full, first, &mut dups) {
+            None => Ok(finish(mesh, order, &dups)),
+            Some(_) => Err(too_large),
+        }
+    } else {
+        let mut mesh = Mesh::<Wide>::new(pts, usize::MAX);
+        start(&mut mesh, first);
+        match insert_from(&mut mesh, (1, None), first, &mut dups) {
+            None => Ok(finish(mesh, order, &dups)),
+            Some(_) => Err(too_large),
+        }
+    }
+}
+
+/// Builds the first tetrahedron from the four points `first`, positively oriented.
+fn start<S: Store>(mesh: &mut Mesh<S>, first: [u32; 4]) {
     let [a, b, c, d] = first;
     let p = |k: u32| &mesh.pts[k as usize];
     if orient(p(a), p(b), p(c), p(d)) > 0.0 {
@@ -60,19 +96,40 @@ pub fn tetrahedralize(points: &[DVec3]) -> Result<Tetrahedralization, DelaunayEr
     } else {
         mesh.init(a, b, d, c);
     }
-    // Merged duplicates as (internal slot, internal vertex it coincides with).
-    let mut dups: Vec<(u32, u32)> = Vec::new();
-    for s in 1..=n as u32 {
+}
+
+/// Inserts internal vertices `from..=n` (except `first`, already in), where `from` may come
+/// with the conflicting tetrahedron already found for it; merged duplicates go to `dups`.
+/// Returns the vertex that did not fit the storage, with its conflicting tetrahedron, so
+/// that the insertion resumes exactly where it stopped.
+fn insert_from<S: Store>(
+    mesh: &mut Mesh<S>,
+    (from, found): (u32, Option<u32>),
+    first: [u32; 4],
+    dups: &mut Vec<(u32, u32)>,
+) -> Option<(u32, Option<u32>)> {
+    let n = mesh.pts.len() - 1;
+    let mut found = found;
+    for s in from..=n as u32 {
         if first.contains(&s) {
             continue;
         }
         let q = mesh.pts[s as usize];
-        match mesh.locate(&q) {
-            Location::Duplicate(w) => dups.push((s, w)),
-            Location::Conflict(t) => mesh.insert(s, t, n)?,
+        let t = match found.take() {
+            Some(t) => t,
+            None => match mesh.locate(&q) {
+                Location::Duplicate(w) => {
+                    dups.push((s, w));
+                    continue;
+                }
+                Location::Conflict(t) => t,
+            },
+        };
+        if mesh.insert(s, t) == Inserted::Full {
+            return Some((s, Some(t)));
         }
     }
-    Ok(finish(mesh, order, &dups))
+    None
 }
 
 /// Rejects non-finite coordinates and magnitudes where the predicates would not be exact.
@@ -127,4 +184,46 @@ fn collinear(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3]) -> bool {
         )
     };
     o(0, 1) == 0.0 && o(1, 2) == 0.0 && o(0, 2) == 0.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sampling::{Distribution, sample};
+
+    fn same(a: &Tetrahedralization, b: &Tetrahedralization) -> bool {
+        a.len() == b.len()
+            && (0..a.len())
+                .all(|t| a.tetrahedron(t) == b.tetrahedron(t) && a.neighbors(t) == b.neighbors(t))
+            && a.representative == b.representative
+    }
+
+    /// The narrow layout, the wide one from the start, and a move from narrow to wide part
+    /// way (the narrow limit set low) build the same valid tetrahedralization.
+    #[test]
+    fn both_layouts_and_the_move_between_them_agree() {
+        let mut sets: Vec<Vec<DVec3>> = [
+            Distribution::Uniform,
+            Distribution::Sphere,
+            Distribution::Grid,
+            Distribution::Gaussian,
+        ]
+        .into_iter()
+        .map(|d| sample(d, 3000, 7))
+        .collect();
+        let mut dups = sample(Distribution::Ball, 500, 2);
+        dups.extend_from_within(..250);
+        sets.push(dups);
+        for p in &sets {
+            let narrow = tetrahedralize_within(p, usize::MAX).expect("narrow");
+            narrow.validate(p).expect("narrow is Delaunay");
+            assert!(matches!(narrow.tets, super::super::packed::Tets::Narrow(_)));
+            for limit in [0, 100, narrow.len() / 2] {
+                let other = tetrahedralize_within(p, limit).expect("wide");
+                assert!(matches!(other.tets, super::super::packed::Tets::Wide(_)));
+                other.validate(p).expect("wide is Delaunay");
+                assert!(same(&narrow, &other), "limit {limit}");
+            }
+        }
+    }
 }

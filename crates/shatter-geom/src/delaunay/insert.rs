@@ -2,9 +2,9 @@
 //! tetrahedra whose (perturbed) circumsphere contains the point, and fill it with the star
 //! of new tetrahedra joining the point to the cavity boundary.
 
+use super::packed::Store;
 use super::predicates::{insphere_perturbed, orient};
-use super::storage::{BoundaryFace, DEAD, EDGE, EdgeSlot, FLAGS, INF, MARK, Mesh, SEEN};
-use super::types::DelaunayError;
+use super::storage::{BoundaryFace, EDGE, EdgeSlot, FLAGS, INF, MARK, Mesh, SEEN};
 
 /// Where a point landed.
 pub(crate) enum Location {
@@ -14,7 +14,16 @@ pub(crate) enum Location {
     Duplicate(u32),
 }
 
-impl Mesh {
+/// Whether an insertion happened.
+#[derive(Debug, PartialEq, Eq)]
+pub(crate) enum Inserted {
+    /// The point is in the triangulation.
+    Done,
+    /// The new tetrahedra would not fit the storage's limit; nothing changed.
+    Full,
+}
+
+impl<S: Store> Mesh<S> {
     /// Orientation of tetrahedron `v` with vertex `i` replaced by `p`: positive when `p`
     /// is on the same side of the face opposite `i` as vertex `i` (all of `v` finite
     /// except possibly position `i`).
@@ -29,7 +38,7 @@ impl Mesh {
         let mut t = self.last;
         let mut from = 4usize;
         'walk: loop {
-            let v = self.tv[t as usize];
+            let v = self.tets.verts(t);
             // xorshift32 for the face order.
             let mut r = self.rng;
             r ^= r << 13;
@@ -43,7 +52,7 @@ impl Mesh {
                     continue;
                 }
                 if self.orient_replaced(&v, i, p) < 0.0 {
-                    let packed = self.adj[t as usize][i];
+                    let packed = self.tets.adj(t, i);
                     let n = packed >> 2;
                     from = (packed & 3) as usize;
                     if self.is_infinite(n) {
@@ -69,7 +78,7 @@ impl Mesh {
     /// Whether (unmarked) tetrahedron `t` is in conflict with `p`.
     #[inline]
     fn in_conflict(&self, t: u32, p: &[f64; 3]) -> bool {
-        let v = &self.tv[t as usize];
+        let v = &self.tets.verts(t);
         let inf = if v[0] == INF {
             0
         } else if v[1] == INF {
@@ -88,46 +97,41 @@ impl Mesh {
         if o != 0.0 {
             return o > 0.0;
         }
-        let n = self.adj[t as usize][inf] >> 2;
-        let w = &self.tv[n as usize];
-        let q = |k: usize| &self.pts[(w[k] & !FLAGS) as usize];
+        let n = self.tets.adj(t, inf) >> 2;
+        let w = self.tets.verts(n);
+        let q = |k: usize| &self.pts[w[k] as usize];
         insphere_perturbed(q(0), q(1), q(2), q(3), p)
     }
 
     /// Inserts internal vertex `pi`, starting from the conflicting tetrahedron `t0`.
-    pub(crate) fn insert(
-        &mut self,
-        pi: u32,
-        t0: u32,
-        n_points: usize,
-    ) -> Result<(), DelaunayError> {
+    pub(crate) fn insert(&mut self, pi: u32, t0: u32) -> Inserted {
         let p = self.pts[pi as usize];
         // 1. Cavity: depth-first search over tetrahedra in conflict.
         self.cavity.clear();
         self.boundary.clear();
         self.stack.clear();
-        self.tv[t0 as usize][3] |= MARK;
+        self.tets.add_flags(t0, MARK);
         self.cavity.push(t0);
         self.stack.push(t0);
         while let Some(t) = self.stack.pop() {
-            for i in 0..4 {
-                let outer = self.adj[t as usize][i];
+            let tv = self.tets.verts(t);
+            let ta = self.tets.adjs(t);
+            for (i, &outer) in ta.iter().enumerate() {
                 let n = outer >> 2;
-                let flags = self.tv[n as usize][3] & FLAGS;
+                let flags = self.tets.flags(n) & FLAGS;
                 if flags == MARK {
                     continue;
                 }
                 if flags == 0 && self.in_conflict(n, &p) {
-                    self.tv[n as usize][3] |= MARK;
+                    self.tets.add_flags(n, MARK);
                     self.cavity.push(n);
                     self.stack.push(n);
                 } else {
                     if flags == 0 {
-                        self.tv[n as usize][3] |= SEEN;
+                        self.tets.add_flags(n, SEEN);
                         self.seen.push(n);
                     }
-                    let mut verts = self.tv[t as usize];
-                    verts[3] &= !MARK;
+                    let mut verts = tv;
                     verts[i] = pi;
                     self.boundary.push(BoundaryFace {
                         verts,
@@ -138,11 +142,17 @@ impl Mesh {
             }
         }
         for &n in &self.seen {
-            self.tv[n as usize][3] &= !SEEN;
+            self.tets.clear_flags(n, SEEN);
         }
         self.seen.clear();
         // 2. Star: one new tetrahedron per boundary face, glued through the edge table.
         let nb = self.boundary.len();
+        if !self.has_room(nb.saturating_sub(self.cavity.len())) {
+            for &t in &self.cavity {
+                self.tets.clear_flags(t, MARK);
+            }
+            return Inserted::Full;
+        }
         let need = (nb * 6).next_power_of_two().max(64);
         if self.edges.len() < need {
             self.edges = vec![EdgeSlot::default(); need];
@@ -161,13 +171,13 @@ impl Mesh {
             let s = if k < self.cavity.len() {
                 self.cavity[k]
             } else {
-                self.alloc(n_points)?
+                self.alloc()
             };
-            let su = s as usize;
             let apex = bf.apex as usize;
-            self.tv[su] = bf.verts;
-            self.adj[su][apex] = bf.outer;
-            self.adj[(bf.outer >> 2) as usize][(bf.outer & 3) as usize] = s << 2 | apex as u32;
+            self.tets.set_verts(s, bf.verts);
+            self.tets.set_adj(s, apex, bf.outer);
+            self.tets
+                .set_adj(bf.outer >> 2, (bf.outer & 3) as usize, s << 2 | apex as u32);
             if bf.verts.iter().all(|&x| x != INF) {
                 last_finite = s;
             }
@@ -186,8 +196,9 @@ impl Mesh {
                         break;
                     }
                     if e.u == v && e.v == u {
-                        self.adj[su][j] = e.val;
-                        self.adj[(e.val >> 2) as usize][(e.val & 3) as usize] = s << 2 | j as u32;
+                        self.tets.set_adj(s, j, e.val);
+                        self.tets
+                            .set_adj(e.val >> 2, (e.val & 3) as usize, s << 2 | j as u32);
                         found = true;
                         break;
                     }
@@ -210,13 +221,12 @@ impl Mesh {
         // Cavity slots left over (the cavity had more tetrahedra than the star) are freed.
         for k in nb..self.cavity.len() {
             let t = self.cavity[k];
-            self.tv[t as usize] = [DEAD; 4];
-            self.free.push(t);
+            self.kill(t);
         }
         if last_finite != u32::MAX {
             self.last = last_finite;
         }
-        Ok(())
+        Inserted::Done
     }
 }
 

@@ -1,18 +1,21 @@
 //! From the working storage to the public result: drop the infinite and free tetrahedra,
 //! renumber in place, translate internal vertices to input indices.
 
-use super::storage::{DEAD, INF, Mesh};
-use super::types::{NO_NEIGHBOR, Tetrahedralization};
+use super::packed::{Store, Tets};
+use super::storage::{INF, Mesh};
+use super::types::Tetrahedralization;
 
 /// Builds the result. `order[k]` is the input index of internal vertex `k + 1`; `dups`
 /// lists merged duplicates as (internal slot, internal vertex).
-pub(crate) fn finish(mesh: Mesh, order: Vec<u32>, dups: &[(u32, u32)]) -> Tetrahedralization {
-    let Mesh {
-        pts,
-        mut tv,
-        mut adj,
-        ..
-    } = mesh;
+pub(crate) fn finish<S: Store>(
+    mesh: Mesh<S>,
+    order: Vec<u32>,
+    dups: &[(u32, u32)],
+) -> Tetrahedralization
+where
+    Tets: From<S>,
+{
+    let Mesh { pts, mut tets, .. } = mesh;
     drop(pts);
     let n = order.len();
     // name[v]: the output index of internal vertex v — the smallest input index at its position.
@@ -42,11 +45,13 @@ pub(crate) fn finish(mesh: Mesh, order: Vec<u32>, dups: &[(u32, u32)]) -> Tetrah
     let unique_points = n - duplicates.len();
 
     // Rank structure over kept tetrahedra: a bit per tetrahedron, a prefix count per word.
-    let total = tv.len();
+    let total = tets.len();
+    let dead = tets.vertex_marker();
     let words = total.div_ceil(64);
     let mut bits = vec![0u64; words];
-    for (t, v) in tv.iter().enumerate() {
-        if v[0] != DEAD && !v.contains(&INF) {
+    for t in 0..total {
+        let v = tets.verts(t as u32);
+        if v[0] != dead && !v.contains(&INF) {
             bits[t / 64] |= 1 << (t % 64);
         }
     }
@@ -59,30 +64,24 @@ pub(crate) fn finish(mesh: Mesh, order: Vec<u32>, dups: &[(u32, u32)]) -> Tetrah
     let kept = |t: usize| bits[t / 64] >> (t % 64) & 1 != 0;
     let rank = |t: usize| before[t / 64] + (bits[t / 64] & ((1u64 << (t % 64)) - 1)).count_ones();
 
-    // In place: the new index of a kept tetrahedron never exceeds its old one.
-    let mut out = 0usize;
+    // In place, in the same records: the new index of a kept tetrahedron never exceeds its
+    // old one. Vertices become input indices, adjacency fields the neighbour's new index
+    // (the marker on the hull).
+    let none = tets.adjacency_marker();
+    let mut out = 0u32;
     for t in 0..total {
         if !kept(t) {
             continue;
         }
-        let v = tv[t];
-        let a = adj[t];
-        tv[out] = v.map(|x| name[x as usize]);
-        adj[out] = a.map(|x| {
+        let v = tets.verts(t as u32);
+        let a: [u32; 4] = std::array::from_fn(|i| tets.adj(t as u32, i));
+        tets.set_verts(out, v.map(|x| name[x as usize]));
+        for (i, x) in a.into_iter().enumerate() {
             let nb = (x >> 2) as usize;
-            if kept(nb) { rank(nb) } else { NO_NEIGHBOR }
-        });
+            tets.set_adj(out, i, if kept(nb) { rank(nb) } else { none });
+        }
         out += 1;
     }
-    tv.truncate(out);
-    adj.truncate(out);
-    tv.shrink_to_fit();
-    adj.shrink_to_fit();
-    Tetrahedralization {
-        tetrahedra: tv,
-        neighbors: adj,
-        representative,
-        unique_points,
-        duplicates,
-    }
+    tets.truncate(out as usize);
+    Tetrahedralization::from_parts(tets.into(), representative, unique_points, duplicates)
 }

@@ -3,22 +3,18 @@
 //! See the module docs of [`super`] for the layout. Vertex `0` is the infinite vertex;
 //! input points live at internal indices `1..=n` in insertion (BRIO) order.
 
-use super::types::{DelaunayError, FACES};
+use super::packed::{Narrow, Store, Wide};
+use super::types::FACES;
 
 /// The infinite vertex.
 pub(crate) const INF: u32 = 0;
-/// Bit of `tv[t][3]` marking a tetrahedron of the current cavity.
-pub(crate) const MARK: u32 = 1 << 31;
-/// Bit of `tv[t][3]` marking a tetrahedron found *not* in conflict during the current
-/// cavity search (so it is tested once, however many cavity faces it borders).
-pub(crate) const SEEN: u32 = 1 << 30;
-/// Both flag bits; vertex indices stay below `2^30`.
-pub(crate) const FLAGS: u32 = MARK | SEEN;
-/// `tv[t][0]` of a free (deleted, reusable) slot.
-pub(crate) const DEAD: u32 = u32::MAX;
-/// Most tetrahedra the packed adjacency (`tet << 2 | face`) can address.
-pub(crate) const MAX_TETS: usize = 1 << 30;
-
+/// Flag of a tetrahedron of the current cavity.
+pub(crate) const MARK: u8 = 1;
+/// Flag of a tetrahedron found *not* in conflict during the current cavity search (so it
+/// is tested once, however many cavity faces it borders).
+pub(crate) const SEEN: u8 = 2;
+/// Both flags.
+pub(crate) const FLAGS: u8 = MARK | SEEN;
 /// One face of the cavity boundary, recorded while the cavity grows.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct BoundaryFace {
@@ -40,14 +36,16 @@ pub(crate) struct EdgeSlot {
 }
 
 /// The triangulation under construction plus the scratch buffers of one insertion.
-pub(crate) struct Mesh {
+pub(crate) struct Mesh<S> {
     /// Point coordinates by internal index (`pts[0]` is a placeholder for the infinite vertex).
     pub pts: Vec<[f64; 3]>,
-    /// Vertices of every tetrahedron (internal indices).
-    pub tv: Vec<[u32; 4]>,
-    /// `adj[t][i] = n << 2 | j`: tetrahedron `n` is across the face opposite vertex `i`
-    /// of `t`, and that face is opposite vertex `j` in `n`.
-    pub adj: Vec<[u32; 4]>,
+    /// Every tetrahedron: its vertices (internal indices; a free slot has the vertex
+    /// marker first), the flags [`MARK`] and [`SEEN`], and its adjacency
+    /// `adj(t, i) = n << 2 | j`: tetrahedron `n` is across the face opposite vertex `i` of
+    /// `t`, and that face is opposite vertex `j` in `n`.
+    pub tets: S,
+    /// Most slots `tets` may grow to (its layout's limit, lower in tests).
+    pub limit: usize,
     /// Free slots.
     pub free: Vec<u32>,
     /// A finite tetrahedron near the last inserted point: where the next walk starts.
@@ -94,18 +92,19 @@ const fn build_edge_table() -> [[(u8, u8); 4]; 4] {
     t
 }
 
-impl Mesh {
+impl<S: Store> Mesh<S> {
     /// Empty storage for `pts` (internal order, with the placeholder at 0).
-    pub(crate) fn new(pts: Vec<[f64; 3]>) -> Self {
+    pub(crate) fn new(pts: Vec<[f64; 3]>, limit: usize) -> Self {
         let n = pts.len();
         // ~6.77 finite tetrahedra per point for uniform points, plus the hull's infinite
         // ones. Reserving a little more avoids a reallocation (which may copy) near the end;
         // pages never written are never resident.
         let cap = n * 7 + 1024;
+        let tets = S::with_capacity(cap);
         Self {
+            limit: limit.min(tets.max_len()),
+            tets,
             pts,
-            tv: Vec::with_capacity(cap),
-            adj: Vec::with_capacity(cap),
             free: Vec::new(),
             last: 0,
             rng: 0x9E37_79B9,
@@ -118,33 +117,41 @@ impl Mesh {
         }
     }
 
-    /// Whether tetrahedron `t` has the infinite vertex (`t` must not be marked).
+    /// Whether tetrahedron `t` has the infinite vertex.
     #[inline(always)]
     pub(crate) fn is_infinite(&self, t: u32) -> bool {
-        let v = &self.tv[t as usize];
-        (v[0] == INF) | (v[1] == INF) | (v[2] == INF) | (v[3] == INF)
+        self.tets.verts(t).contains(&INF)
     }
 
-    /// A slot for a new tetrahedron (not the cavity's own).
+    /// Frees slot `t`.
     #[inline]
-    pub(crate) fn alloc(&mut self, n_points: usize) -> Result<u32, DelaunayError> {
-        if let Some(t) = self.free.pop() {
-            return Ok(t);
+    pub(crate) fn kill(&mut self, t: u32) {
+        let dead = self.tets.vertex_marker();
+        self.tets.set_verts(t, [dead; 4]);
+        self.free.push(t);
+    }
+
+    /// Whether `extra` more slots than the cavity's own fit within [`Self::limit`].
+    #[inline]
+    pub(crate) fn has_room(&self, extra: usize) -> bool {
+        extra <= self.free.len() + (self.limit - self.tets.len())
+    }
+
+    /// A slot for a new tetrahedron (not the cavity's own); [`Self::has_room`] must have
+    /// said there is one.
+    #[inline]
+    pub(crate) fn alloc(&mut self) -> u32 {
+        match self.free.pop() {
+            Some(t) => t,
+            None => self.tets.push(),
         }
-        let t = self.tv.len();
-        if t >= MAX_TETS {
-            return Err(DelaunayError::TooLarge { points: n_points });
-        }
-        self.tv.push([DEAD; 4]);
-        self.adj.push([u32::MAX; 4]);
-        Ok(t as u32)
     }
 
     /// Builds the first tetrahedron `(a, b, c, d)` (positively oriented) and the four
     /// infinite tetrahedra on its faces.
     pub(crate) fn init(&mut self, a: u32, b: u32, c: u32, d: u32) {
         let t0 = [a, b, c, d];
-        self.tv.push(t0);
+        let mut all = vec![t0];
         for i in 0..4 {
             // The face opposite i, seen from the other side, plus the infinite vertex:
             // replacing vertex i by INF and swapping two others keeps a positive orientation.
@@ -157,30 +164,53 @@ impl Mesh {
                 _ => (0, 1),
             };
             t.swap(j, k);
-            self.tv.push(t);
+            all.push(t);
         }
-        self.adj = vec![[u32::MAX; 4]; 5];
+        for (s, v) in all.iter().enumerate() {
+            let t = self.tets.push();
+            debug_assert_eq!(t as usize, s);
+            self.tets.set_verts(t, *v);
+        }
         // Glue by matching faces (25 pairs, once).
-        for s in 0..5 {
+        let face = |v: &[u32; 4], i: usize| {
+            let mut f: Vec<u32> = (0..4).filter(|&k| k != i).map(|k| v[k]).collect();
+            f.sort_unstable();
+            f
+        };
+        for (s, v) in all.iter().enumerate() {
             for i in 0..4 {
-                let mut f: Vec<u32> = (0..4).filter(|&k| k != i).map(|k| self.tv[s][k]).collect();
-                f.sort_unstable();
-                for u in 0..5 {
-                    if u == s {
-                        continue;
-                    }
+                let f = face(v, i);
+                for (u, w) in all.iter().enumerate() {
                     for j in 0..4 {
-                        let mut g: Vec<u32> =
-                            (0..4).filter(|&k| k != j).map(|k| self.tv[u][k]).collect();
-                        g.sort_unstable();
-                        if f == g {
-                            self.adj[s][i] = (u as u32) << 2 | j as u32;
+                        if u != s && face(w, j) == f {
+                            self.tets.set_adj(s as u32, i, (u as u32) << 2 | j as u32);
                         }
                     }
                 }
             }
         }
         self.last = 0;
+    }
+}
+
+impl Mesh<Narrow> {
+    /// The same triangulation in the wide layout, for when the narrow one is full.
+    pub(crate) fn into_wide(self, limit: usize) -> Mesh<Wide> {
+        let tets = Wide::from_narrow(&self.tets, self.tets.len());
+        Mesh {
+            limit: limit.min(tets.max_len()),
+            tets,
+            pts: self.pts,
+            free: self.free,
+            last: self.last,
+            rng: self.rng,
+            cavity: self.cavity,
+            stack: self.stack,
+            seen: self.seen,
+            boundary: self.boundary,
+            edges: self.edges,
+            stamp: self.stamp,
+        }
     }
 }
 

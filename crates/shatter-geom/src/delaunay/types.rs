@@ -2,6 +2,8 @@
 
 use glam::DVec3;
 
+use super::packed::Tets;
+
 /// Marker in [`Tetrahedralization::neighbors`] for a face on the convex hull.
 pub const NO_NEIGHBOR: u32 = u32::MAX;
 
@@ -10,12 +12,30 @@ pub const NO_NEIGHBOR: u32 = u32::MAX;
 pub const FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
 
 /// The result of [`tetrahedralize`](super::tetrahedralize).
+///
+/// The tetrahedra and their face adjacency are stored bit-packed (24 bytes per
+/// tetrahedron for up to about two million points, where two `[u32; 4]` arrays take 32)
+/// and read through [`tetrahedron`](Self::tetrahedron), [`tetrahedra`](Self::tetrahedra) and
+/// [`neighbors`](Self::neighbors).
+///
+/// ```
+/// use shatter_geom::delaunay::{NO_NEIGHBOR, tetrahedralize};
+/// use shatter_geom::sampling::uniform;
+/// let pts = uniform(200, 3);
+/// let t = tetrahedralize(&pts).expect("points in general position");
+/// for (i, tet) in t.tetrahedra().enumerate() {
+///     for (face, n) in t.neighbors(i).into_iter().enumerate() {
+///         if n != NO_NEIGHBOR {
+///             // The neighbour shares the three vertices of the face opposite `face`.
+///             let other = t.tetrahedron(n as usize);
+///             assert!((0..4).filter(|&k| k != face).all(|k| other.contains(&tet[k])));
+///         }
+///     }
+/// }
+/// ```
 #[derive(Debug, Clone, Default)]
 pub struct Tetrahedralization {
-    /// Positively oriented tetrahedra, four indices into the input points each.
-    pub tetrahedra: Vec<[u32; 4]>,
-    /// `neighbors[t][i]`: the tetrahedron sharing the face opposite vertex `i`.
-    pub neighbors: Vec<[u32; 4]>,
+    pub(crate) tets: Tets,
     /// For every input point, the index of the first input point at the same position.
     pub representative: Vec<u32>,
     /// Number of distinct input points.
@@ -25,6 +45,94 @@ pub struct Tetrahedralization {
 }
 
 impl Tetrahedralization {
+    pub(crate) fn from_parts(
+        tets: Tets,
+        representative: Vec<u32>,
+        unique_points: usize,
+        duplicates: Vec<[u32; 2]>,
+    ) -> Self {
+        Self {
+            tets,
+            representative,
+            unique_points,
+            duplicates,
+        }
+    }
+
+    /// Number of tetrahedra.
+    pub fn len(&self) -> usize {
+        self.tets.len()
+    }
+
+    /// Whether there are no tetrahedra (never, for a successful [`tetrahedralize`](super::tetrahedralize)).
+    pub fn is_empty(&self) -> bool {
+        self.tets.len() == 0
+    }
+
+    /// Tetrahedron `t`: four indices into the input points, positively oriented.
+    ///
+    /// # Panics
+    /// If `t >= self.len()`.
+    #[inline]
+    pub fn tetrahedron(&self, t: usize) -> [u32; 4] {
+        assert!(t < self.len(), "tetrahedron {t} of {}", self.len());
+        self.tets.verts(t as u32)
+    }
+
+    /// Every tetrahedron in order, as [`tetrahedron`](Self::tetrahedron) gives them.
+    pub fn tetrahedra(&self) -> impl ExactSizeIterator<Item = [u32; 4]> + '_ {
+        (0..self.len() as u32).map(|t| self.tets.verts(t))
+    }
+
+    /// `neighbors(t)[i]`: the tetrahedron sharing the face opposite vertex `i` of `t`, or
+    /// [`NO_NEIGHBOR`] when that face is on the convex hull.
+    ///
+    /// # Panics
+    /// If `t >= self.len()`.
+    #[inline]
+    pub fn neighbors(&self, t: usize) -> [u32; 4] {
+        assert!(t < self.len(), "tetrahedron {t} of {}", self.len());
+        std::array::from_fn(|i| self.tets.neighbor(t as u32, i).unwrap_or(NO_NEIGHBOR))
+    }
+
+    /// Replaces tetrahedron `t`'s vertices (for tools that edit a result, and for testing
+    /// [`validate`](Self::validate)).
+    ///
+    /// # Panics
+    /// If `t >= self.len()` or a vertex is not below the number of input points.
+    pub fn set_tetrahedron(&mut self, t: usize, verts: [u32; 4]) {
+        assert!(t < self.len(), "tetrahedron {t} of {}", self.len());
+        let n = self.representative.len();
+        assert!(
+            verts.iter().all(|&v| (v as usize) < n),
+            "vertices {verts:?} of {n} points"
+        );
+        self.tets.set_verts(t as u32, verts);
+    }
+
+    /// Replaces `neighbors(t)[face]` by `other` (a tetrahedron or [`NO_NEIGHBOR`]).
+    ///
+    /// # Panics
+    /// If `t` or `other` is out of range, or `face > 3`.
+    pub fn set_neighbor(&mut self, t: usize, face: usize, other: u32) {
+        assert!(t < self.len() && face < 4, "face {face} of tetrahedron {t}");
+        let other = (other != NO_NEIGHBOR).then(|| {
+            assert!(
+                (other as usize) < self.len(),
+                "neighbour {other} of {}",
+                self.len()
+            );
+            other
+        });
+        self.tets.set_neighbor(t as u32, face, other);
+    }
+
+    /// Heap bytes the result holds: the packed tetrahedra, `representative` and
+    /// `duplicates`.
+    pub fn heap_bytes(&self) -> usize {
+        self.tets.heap_bytes() + self.representative.capacity() * 4 + self.duplicates.capacity() * 8
+    }
+
     /// The convex hull's boundary: one triangle per tetrahedron face without a neighbour,
     /// wound counter-clockwise seen from outside (outward normals).
     ///
@@ -36,7 +144,8 @@ impl Tetrahedralization {
     /// ```
     pub fn hull_faces(&self) -> Vec<[u32; 3]> {
         let mut out = Vec::new();
-        for (tet, nb) in self.tetrahedra.iter().zip(&self.neighbors) {
+        for (t, tet) in self.tetrahedra().enumerate() {
+            let nb = self.neighbors(t);
             for (i, face) in FACES.iter().enumerate() {
                 if nb[i] == NO_NEIGHBOR {
                     out.push([tet[face[0]], tet[face[1]], tet[face[2]]]);
@@ -48,8 +157,7 @@ impl Tetrahedralization {
 
     /// Sum of the tetrahedra's volumes, computed in `f64` from `points`.
     pub fn volume(&self, points: &[DVec3]) -> f64 {
-        self.tetrahedra
-            .iter()
+        self.tetrahedra()
             .map(|t| {
                 let a = points[t[0] as usize];
                 (points[t[1] as usize] - a)

@@ -57,13 +57,17 @@ impl Tetrahedralization {
     /// convex hull.
     pub fn validate(&self, points: &[DVec3]) -> Result<(), ValidationError> {
         let p: Vec<[f64; 3]> = points.iter().map(|q| q.to_array()).collect();
-        let nt = self.tetrahedra.len();
-        if self.neighbors.len() != nt || self.representative.len() != p.len() {
-            return Err(ValidationError::Malformed("array lengths differ".into()));
+        let nt = self.len();
+        if self.representative.len() != p.len() {
+            return Err(ValidationError::Malformed(format!(
+                "{} representatives for {} points",
+                self.representative.len(),
+                p.len()
+            )));
         }
         let mut used = vec![false; p.len()];
-        for (t, v) in self.tetrahedra.iter().enumerate() {
-            for &x in v {
+        for (t, v) in self.tetrahedra().enumerate() {
+            for &x in &v {
                 if x as usize >= p.len() || self.representative[x as usize] != x {
                     return Err(ValidationError::Malformed(format!(
                         "tetrahedron {t} has vertex {x}, not a representative input point"
@@ -73,7 +77,7 @@ impl Tetrahedralization {
             }
             let q = |k: usize| &p[v[k] as usize];
             if orient(q(0), q(1), q(2), q(3)) <= 0.0 {
-                return Err(ValidationError::Orientation { tet: t, verts: *v });
+                return Err(ValidationError::Orientation { tet: t, verts: v });
             }
         }
         for (i, &r) in self.representative.iter().enumerate() {
@@ -81,10 +85,10 @@ impl Tetrahedralization {
                 return Err(ValidationError::Unused(r));
             }
         }
-        for (t, v) in self.tetrahedra.iter().enumerate() {
+        for (t, v) in self.tetrahedra().enumerate() {
             let q = |k: usize| &p[v[k] as usize];
-            for face in 0..4 {
-                let n = self.neighbors[t][face];
+            let nb = self.neighbors(t);
+            for (face, &n) in nb.iter().enumerate() {
                 if n == NO_NEIGHBOR {
                     continue;
                 }
@@ -93,9 +97,12 @@ impl Tetrahedralization {
                     face,
                     other: n,
                 };
-                let w = self.tetrahedra.get(n as usize).ok_or_else(|| err.clone())?;
+                if n as usize >= nt {
+                    return Err(err);
+                }
+                let w = self.tetrahedron(n as usize);
                 let back = (0..4)
-                    .find(|&j| self.neighbors[n as usize][j] == t as u32)
+                    .find(|&j| self.neighbors(n as usize)[j] == t as u32)
                     .ok_or_else(|| err.clone())?;
                 let shared = (0..4).filter(|&k| k != face).all(|k| w.contains(&v[k]));
                 if !shared || v.contains(&w[back]) {
@@ -115,9 +122,10 @@ impl Tetrahedralization {
     fn validate_hull(&self, p: &[[f64; 3]]) -> Result<(), ValidationError> {
         // Directed hull edge (u, v) -> (tetrahedron, the face's third vertex).
         let mut edges: HashMap<(u32, u32), (usize, u32)> = HashMap::new();
-        for (t, v) in self.tetrahedra.iter().enumerate() {
+        for (t, v) in self.tetrahedra().enumerate() {
+            let nb = self.neighbors(t);
             for (i, f) in FACES.iter().enumerate() {
-                if self.neighbors[t][i] != NO_NEIGHBOR {
+                if nb[i] != NO_NEIGHBOR {
                     continue;
                 }
                 let tri = [v[f[0]], v[f[1]], v[f[2]]];
@@ -147,7 +155,7 @@ impl Tetrahedralization {
                 )));
             }
             if o == 0.0 {
-                let v = &self.tetrahedra[t];
+                let v = self.tetrahedron(t);
                 let q = |k: usize| &p[v[k] as usize];
                 if insphere_perturbed(q(0), q(1), q(2), q(3), &p[w as usize]) {
                     return Err(ValidationError::NotDelaunay { tet: t, vertex: w });

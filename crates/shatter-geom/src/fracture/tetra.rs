@@ -16,7 +16,7 @@ use super::piece::{Piece, UnionFind};
 use super::seeds::InsideSampler;
 use super::types::{Bond, Fragment};
 use crate::TriMesh;
-use crate::delaunay::{NO_NEIGHBOR, tetrahedralize};
+use crate::delaunay::{NO_NEIGHBOR, Tetrahedralization, tetrahedralize};
 
 /// A tetrahedron (or group) below this fraction of the object's volume is a sliver.
 pub const SLIVER_VOLUME_FRACTION: f64 = 1e-4;
@@ -78,8 +78,8 @@ pub(crate) fn tetra(
 ) -> Result<(Vec<Fragment>, Vec<Bond>), FractureError> {
     let pts = tetra_points(mesh, opt, rng);
     let del = tetrahedralize(&pts)?;
-    let nt = del.tetrahedra.len();
-    let corners = |t: usize| del.tetrahedra[t].map(|i| pts[i as usize]);
+    let nt = del.len();
+    let corners = |t: usize| del.tetrahedron(t).map(|i| pts[i as usize]);
     let vols: Vec<f64> = (0..nt).map(|t| tet_volume(corners(t))).collect();
     let hull_volume: f64 = vols.iter().sum();
 
@@ -121,7 +121,7 @@ pub(crate) fn tetra(
             }
             let mut best: Option<(f64, usize)> = None;
             for f in 0..4 {
-                let n = del.neighbors[t][f];
+                let n = del.neighbors(t)[f];
                 if n == NO_NEIGHBOR || !keep[n as usize] || uf.find(n as usize) == g {
                     continue;
                 }
@@ -177,7 +177,7 @@ pub(crate) fn tetra(
     let piece_ok: Vec<bool> = (0..nt).map(|t| vols[t] >= vmin).collect();
     let fragments = members
         .iter()
-        .map(|ts| group_fragment(ts, &del.tetrahedra, &del.neighbors, &frag, &pts, &piece_ok))
+        .map(|ts| group_fragment(ts, &del, &frag, &pts, &piece_ok))
         .collect();
 
     // Bonds: shared faces between tetrahedra of different fragments.
@@ -187,7 +187,7 @@ pub(crate) fn tetra(
             continue;
         }
         for (f, face) in TET_FACES.iter().enumerate() {
-            let n = del.neighbors[t][f];
+            let n = del.neighbors(t)[f];
             if n == NO_NEIGHBOR || frag[n as usize] == u32::MAX {
                 continue;
             }
@@ -241,8 +241,7 @@ pub(crate) fn quality(c: [DVec3; 4]) -> f64 {
 /// neighbours, which the physics engine then pushes apart violently.
 fn group_fragment(
     ts: &[usize],
-    tets: &[[u32; 4]],
-    neighbors: &[[u32; 4]],
+    del: &Tetrahedralization,
     frag: &[u32],
     pts: &[DVec3],
     piece_ok: &[bool],
@@ -253,9 +252,11 @@ fn group_fragment(
     let mut interior = Vec::with_capacity(ts.len() * 4);
     let mut piece_pts: Vec<u32> = Vec::with_capacity(ts.len() * 4);
     for &t in ts {
-        piece_pts.extend(tets[t]);
+        let tet = del.tetrahedron(t);
+        let nb = del.neighbors(t);
+        piece_pts.extend(tet);
         for (f, face) in TET_FACES.iter().enumerate() {
-            let n = neighbors[t][f];
+            let n = nb[f];
             let across = if n == NO_NEIGHBOR {
                 u32::MAX
             } else {
@@ -265,7 +266,7 @@ fn group_fragment(
                 continue;
             }
             let base = positions.len() as u32;
-            positions.extend(face.map(|i| pts[tets[t][i] as usize]));
+            positions.extend(face.map(|i| pts[tet[i] as usize]));
             triangles.push([base, base + 1, base + 2]);
             interior.push(across != u32::MAX);
         }
@@ -275,7 +276,12 @@ fn group_fragment(
     let mut convex_pieces: Vec<Vec<DVec3>> = ts
         .iter()
         .filter(|&&t| piece_ok[t] || ts.len() == 1)
-        .map(|&t| tets[t].iter().map(|&i| pts[i as usize]).collect())
+        .map(|&t| {
+            del.tetrahedron(t)
+                .iter()
+                .map(|&i| pts[i as usize])
+                .collect()
+        })
         .collect();
     if convex_pieces.is_empty() {
         // Only slivers (merged up to the volume threshold): their common hull.

@@ -196,7 +196,7 @@ pub(crate) fn delaunay_neighbours(
     let scaled: Vec<DVec3> = seeds.iter().map(|&s| s * scale).collect();
     let t = crate::delaunay::tetrahedralize(&scaled).ok()?;
     let mut adjacent: Vec<Vec<u32>> = vec![Vec::new(); seeds.len()];
-    for tet in &t.tetrahedra {
+    for tet in t.tetrahedra() {
         for a in 0..4 {
             for b in 0..4 {
                 if a != b {
