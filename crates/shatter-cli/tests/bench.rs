@@ -29,6 +29,12 @@ fn bench_delaunay_reports_every_size() {
             "{n} points gave {tets} tetrahedra"
         );
         assert!(row["points_per_second"].as_f64().unwrap() > 0.0);
+        // The result holds at least its tetrahedra's vertex indices and adjacency.
+        let held = row["result_bytes_per_point"].as_f64().unwrap() * n as f64;
+        assert!(
+            held >= tets as f64 * 16.0,
+            "{held} bytes for {tets} tetrahedra"
+        );
     }
 }
 

@@ -40,6 +40,9 @@ struct Row {
     /// Peak RSS during the tetrahedralization minus the RSS just before it (the points
     /// were already allocated), per point. `None` where `/proc` is unavailable.
     peak_bytes_per_point: Option<f64>,
+    /// Heap bytes the result holds (its packed tetrahedra, `representative`,
+    /// `duplicates`), per point.
+    result_bytes_per_point: f64,
 }
 
 /// The `--json` report.
@@ -62,8 +65,8 @@ pub fn run(args: &BenchDelaunayArgs) -> Result<(), CliError> {
     let mut per_row_peak = true;
     if !args.json {
         println!(
-            "{:>10} {:>10} {:>12} {:>11} {:>14} {:>12}",
-            "points", "unique", "tetrahedra", "ms", "points/s", "bytes/point"
+            "{:>10} {:>10} {:>12} {:>11} {:>14} {:>12} {:>12}",
+            "points", "unique", "tetrahedra", "ms", "points/s", "bytes/point", "result B/pt"
         );
     }
     for &n in &args.sizes {
@@ -86,18 +89,20 @@ pub fn run(args: &BenchDelaunayArgs) -> Result<(), CliError> {
             millis,
             points_per_second: n as f64 / (millis / 1e3).max(1e-9),
             peak_bytes_per_point,
+            result_bytes_per_point: tets.heap_bytes() as f64 / n as f64,
         };
         drop(tets);
         if !args.json {
             println!(
-                "{:>10} {:>10} {:>12} {:>11.3} {:>14.0} {:>12}",
+                "{:>10} {:>10} {:>12} {:>11.3} {:>14.0} {:>12} {:>12.1}",
                 row.points,
                 row.unique_points,
                 row.tetrahedra,
                 row.millis,
                 row.points_per_second,
                 row.peak_bytes_per_point
-                    .map_or_else(|| "n/a".to_string(), |b| format!("{b:.1}"))
+                    .map_or_else(|| "n/a".to_string(), |b| format!("{b:.1}")),
+                row.result_bytes_per_point
             );
         }
         rows.push(row);

@@ -165,17 +165,25 @@ impl<S: Store> Mesh<S> {
         }
         let mask = self.edges.len() - 1;
         let shift = 64 - self.edges.len().trailing_zeros();
-        let mut last_finite = u32::MAX;
+        // Slots first (the cavity's own, then new ones), so that every new tetrahedron's
+        // record is written once, whole, after its faces are glued in `star`.
+        self.slots.clear();
         for k in 0..nb {
-            let bf = self.boundary[k];
             let s = if k < self.cavity.len() {
                 self.cavity[k]
             } else {
                 self.alloc()
             };
+            self.slots.push(s);
+        }
+        self.star.clear();
+        self.star.resize(nb, [0; 4]);
+        let mut last_finite = u32::MAX;
+        for k in 0..nb {
+            let bf = self.boundary[k];
+            let s = self.slots[k];
             let apex = bf.apex as usize;
-            self.tets.set_verts(s, bf.verts);
-            self.tets.set_adj(s, apex, bf.outer);
+            self.star[k][apex] = bf.outer;
             self.tets
                 .set_adj(bf.outer >> 2, (bf.outer & 3) as usize, s << 2 | apex as u32);
             if bf.verts.iter().all(|&x| x != INF) {
@@ -187,7 +195,8 @@ impl<S: Store> Mesh<S> {
                 }
                 let u = bf.verts[a as usize];
                 let v = bf.verts[b as usize];
-                // Look for the partner's edge (v, u); otherwise register (u, v).
+                // Look for the partner's edge (v, u); otherwise register (u, v). Values are
+                // `k << 2 | face` with `k` the index in the star.
                 let mut h = (hash(v, u) >> shift) as usize;
                 let mut found = false;
                 loop {
@@ -196,9 +205,9 @@ impl<S: Store> Mesh<S> {
                         break;
                     }
                     if e.u == v && e.v == u {
-                        self.tets.set_adj(s, j, e.val);
-                        self.tets
-                            .set_adj(e.val >> 2, (e.val & 3) as usize, s << 2 | j as u32);
+                        let (k2, j2) = ((e.val >> 2) as usize, (e.val & 3) as usize);
+                        self.star[k][j] = self.slots[k2] << 2 | j2 as u32;
+                        self.star[k2][j2] = s << 2 | j as u32;
                         found = true;
                         break;
                     }
@@ -213,10 +222,14 @@ impl<S: Store> Mesh<S> {
                         u,
                         v,
                         stamp: self.stamp,
-                        val: s << 2 | j as u32,
+                        val: (k as u32) << 2 | j as u32,
                     };
                 }
             }
+        }
+        for k in 0..nb {
+            self.tets
+                .write(self.slots[k], self.boundary[k].verts, self.star[k]);
         }
         // Cavity slots left over (the cavity had more tetrahedra than the star) are freed.
         for k in nb..self.cavity.len() {

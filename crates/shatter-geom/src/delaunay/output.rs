@@ -73,13 +73,12 @@ where
         if !kept(t) {
             continue;
         }
-        let v = tets.verts(t as u32);
-        let a: [u32; 4] = std::array::from_fn(|i| tets.adj(t as u32, i));
-        tets.set_verts(out, v.map(|x| name[x as usize]));
-        for (i, x) in a.into_iter().enumerate() {
+        let v = tets.verts(t as u32).map(|x| name[x as usize]);
+        let a = tets.adjs(t as u32).map(|x| {
             let nb = (x >> 2) as usize;
-            tets.set_adj(out, i, if kept(nb) { rank(nb) } else { none });
-        }
+            if kept(nb) { rank(nb) } else { none }
+        });
+        tets.write(out, v, a);
         out += 1;
     }
     tets.truncate(out as usize);

@@ -52,6 +52,8 @@ pub(crate) trait Store: Sized {
     fn adjs(&self, t: u32) -> [u32; 4];
     /// Sets adjacency field `i` of record `t`.
     fn set_adj(&mut self, t: u32, i: usize, a: u32);
+    /// Writes the whole record `t`: vertices, adjacency, no flags.
+    fn write(&mut self, t: u32, v: [u32; 4], a: [u32; 4]);
     /// Appends a record (fields unspecified until set); returns its index.
     fn push(&mut self) -> u32;
     /// Keeps the first `len` records.
@@ -206,6 +208,27 @@ impl Store for Narrow {
         Self::put(&mut self.recs[t as usize], ADJ_AT[i], AMASK, a);
     }
 
+    #[inline(always)]
+    fn write(&mut self, t: u32, v: [u32; 4], a: [u32; 4]) {
+        // Every position is a constant, so this folds into shifts and ors of three words.
+        let mut w = [0u64; 3];
+        let mut put = |p: u32, width: u32, x: u32| {
+            let (word, off) = ((p / 64) as usize, p % 64);
+            w[word] |= (x as u64) << off;
+            if off + width > 64 {
+                w[word + 1] |= (x as u64) >> (64 - off);
+            }
+        };
+        for i in 0..4 {
+            put(2 + i as u32 * VB, VB, v[i]);
+            put(2 + 4 * VB + i as u32 * AB, AB, a[i]);
+        }
+        let r = &mut self.recs[t as usize];
+        r[0..8].copy_from_slice(&w[0].to_le_bytes());
+        r[8..16].copy_from_slice(&w[1].to_le_bytes());
+        r[16..24].copy_from_slice(&w[2].to_le_bytes());
+    }
+
     #[inline]
     fn push(&mut self) -> u32 {
         self.recs.push([0; RECORD]);
@@ -328,6 +351,12 @@ impl Store for Wide {
     #[inline(always)]
     fn set_adj(&mut self, t: u32, i: usize, a: u32) {
         self.adj[t as usize][i] = a;
+    }
+
+    #[inline(always)]
+    fn write(&mut self, t: u32, v: [u32; 4], a: [u32; 4]) {
+        self.tv[t as usize] = v;
+        self.adj[t as usize] = a;
     }
 
     #[inline]
@@ -458,7 +487,16 @@ mod tests {
         assert_eq!(p.flags(1), 2);
         assert_eq!(p.adjs(1), a);
         assert!((0..4).all(|i| p.adj(1, i) == a[i]));
-        // Setting the vertices clears the flags and keeps the adjacency.
+        // A whole record, then the vertices alone: that clears the flags, keeps the adjacency.
+        let b = [0, max_t << 2 | 3, am, 7];
+        p.add_flags(1, 3);
+        p.write(1, [vm, max_v, 0, 1], b);
+        assert_eq!(
+            (p.verts(1), p.adjs(1), p.flags(1)),
+            ([vm, max_v, 0, 1], b, 0)
+        );
+        assert_eq!((p.verts(0), p.adjs(2)), ([vm; 4], [am; 4]));
+        p.write(1, v, a);
         p.set_verts(1, [1, 2, 3, 4]);
         assert_eq!(p.flags(1), 0);
         assert_eq!(p.adjs(1), a);

@@ -60,6 +60,10 @@ pub(crate) struct Mesh<S> {
     pub seen: Vec<u32>,
     /// Scratch: cavity boundary faces.
     pub boundary: Vec<BoundaryFace>,
+    /// Scratch: the slot of each boundary face's new tetrahedron.
+    pub slots: Vec<u32>,
+    /// Scratch: the adjacency of each new tetrahedron, until its record is written.
+    pub star: Vec<[u32; 4]>,
     /// Scratch: open-addressing edge table (power-of-two size), valid where `stamp` matches.
     pub edges: Vec<EdgeSlot>,
     /// Current stamp of `edges`.
@@ -111,6 +115,8 @@ impl<S: Store> Mesh<S> {
             cavity: Vec::with_capacity(64),
             stack: Vec::with_capacity(64),
             boundary: Vec::with_capacity(128),
+            slots: Vec::with_capacity(128),
+            star: Vec::with_capacity(128),
             seen: Vec::with_capacity(64),
             edges: vec![EdgeSlot::default(); 512],
             stamp: 0,
@@ -208,6 +214,8 @@ impl Mesh<Narrow> {
             stack: self.stack,
             seen: self.seen,
             boundary: self.boundary,
+            slots: self.slots,
+            star: self.star,
             edges: self.edges,
             stamp: self.stamp,
         }
