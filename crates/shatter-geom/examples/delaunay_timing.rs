@@ -38,10 +38,11 @@ fn run(points: &[DVec3]) -> Result<(), Box<dyn std::error::Error>> {
     let before = status_kb("VmRSS:").unwrap_or(0);
     let t0 = Instant::now();
     let c0 = cpu_secs();
-    let t = tetrahedralize(points)?;
+    let mut t = tetrahedralize(points)?;
     let cpu = cpu_secs() - c0;
     let secs = t0.elapsed().as_secs_f64();
     let peak = status_kb("VmHWM:").unwrap_or(0);
+    t.shrink_to_fit();
     let result_bytes = t.heap_bytes();
     println!(
         "{n:>9} points {:>9} tets {:>8.1} ms wall {:>8.1} ms cpu {:>5.2} Mpts/s(cpu)  peak +{:>6.1} B/pt  result {:>6.1} B/pt",

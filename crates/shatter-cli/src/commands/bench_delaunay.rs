@@ -40,8 +40,8 @@ struct Row {
     /// Peak RSS during the tetrahedralization minus the RSS just before it (the points
     /// were already allocated), per point. `None` where `/proc` is unavailable.
     peak_bytes_per_point: Option<f64>,
-    /// Heap bytes the result holds (its packed tetrahedra, `representative`,
-    /// `duplicates`), per point.
+    /// Heap bytes the result holds once shrunk to fit (its packed tetrahedra,
+    /// `representative`, `duplicates`), per point; measured after the peak.
     result_bytes_per_point: f64,
 }
 
@@ -74,7 +74,7 @@ pub fn run(args: &BenchDelaunayArgs) -> Result<(), CliError> {
         per_row_peak &= memory::reset_peak();
         let before = memory::current_rss_bytes();
         let start = Instant::now();
-        let tets = delaunay::tetrahedralize(&points)
+        let mut tets = delaunay::tetrahedralize(&points)
             .input_err(format!("{n} random {} points", args.distribution.as_str()))?;
         let millis = start.elapsed().as_secs_f64() * 1e3;
         let peak = memory::peak_rss_bytes();
@@ -89,7 +89,10 @@ pub fn run(args: &BenchDelaunayArgs) -> Result<(), CliError> {
             millis,
             points_per_second: n as f64 / (millis / 1e3).max(1e-9),
             peak_bytes_per_point,
-            result_bytes_per_point: tets.heap_bytes() as f64 / n as f64,
+            result_bytes_per_point: {
+                tets.shrink_to_fit();
+                tets.heap_bytes() as f64 / n as f64
+            },
         };
         drop(tets);
         if !args.json {

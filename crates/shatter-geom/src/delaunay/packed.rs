@@ -56,8 +56,10 @@ pub(crate) trait Store: Sized {
     fn write(&mut self, t: u32, v: [u32; 4], a: [u32; 4]);
     /// Appends a record (fields unspecified until set); returns its index.
     fn push(&mut self) -> u32;
-    /// Keeps the first `len` records.
+    /// Keeps the first `len` records (the capacity stays).
     fn truncate(&mut self, len: usize);
+    /// Gives unused capacity back (may copy the records).
+    fn shrink_to_fit(&mut self);
     /// Heap bytes held.
     fn heap_bytes(&self) -> usize;
 }
@@ -237,7 +239,10 @@ impl Store for Narrow {
 
     fn truncate(&mut self, len: usize) {
         self.recs.truncate(len);
-        shrink_if_mostly_unused(&mut self.recs);
+    }
+
+    fn shrink_to_fit(&mut self) {
+        self.recs.shrink_to_fit();
     }
 
     fn heap_bytes(&self) -> usize {
@@ -369,20 +374,15 @@ impl Store for Wide {
     fn truncate(&mut self, len: usize) {
         self.tv.truncate(len);
         self.adj.truncate(len);
-        shrink_if_mostly_unused(&mut self.tv);
-        shrink_if_mostly_unused(&mut self.adj);
+    }
+
+    fn shrink_to_fit(&mut self) {
+        self.tv.shrink_to_fit();
+        self.adj.shrink_to_fit();
     }
 
     fn heap_bytes(&self) -> usize {
         (self.tv.capacity() + self.adj.capacity()) * 16
-    }
-}
-
-/// Gives memory back only when over a fifth of the capacity is unused: shrinking may copy
-/// the whole buffer (it does with mimalloc), which for a small gain would raise the peak.
-fn shrink_if_mostly_unused<T>(v: &mut Vec<T>) {
-    if v.capacity() > v.len() + v.len() / 4 {
-        v.shrink_to_fit();
     }
 }
 
@@ -452,6 +452,10 @@ impl Tets {
 
     pub(crate) fn heap_bytes(&self) -> usize {
         with_store!(self, s => s.heap_bytes())
+    }
+
+    pub(crate) fn shrink_to_fit(&mut self) {
+        with_store!(self, s => s.shrink_to_fit())
     }
 }
 
