@@ -199,6 +199,26 @@ fn two_skew_lines_need_quadratic_tetrahedra() {
     assert!(t.len() > 7 * p.len() + 1024);
 }
 
+/// The result is compact: 24 bytes per tetrahedron (vertices and adjacency) plus 4 per
+/// point, so about 166 bytes per uniform point once shrunk — the bulk of the 200 bytes per
+/// point the construction may use at its peak.
+#[test]
+fn the_result_takes_24_bytes_per_tetrahedron() {
+    let n = 50_000;
+    let p = sample(Distribution::Uniform, n, 9);
+    let mut t = tetrahedralize(&p).unwrap();
+    t.shrink_to_fit();
+    let exact = t.len() * 24 + n * 4;
+    assert!(
+        (exact..exact + exact / 100).contains(&t.heap_bytes()),
+        "{} bytes for {} tetrahedra",
+        t.heap_bytes(),
+        t.len()
+    );
+    let per_point = t.heap_bytes() as f64 / n as f64;
+    assert!(per_point < 170.0, "{per_point} bytes per point");
+}
+
 #[test]
 fn single_tetrahedron_and_orientation() {
     let p = [DVec3::ZERO, DVec3::X, DVec3::Z, DVec3::Y];

@@ -15,6 +15,7 @@ pub(crate) const MARK: u8 = 1;
 pub(crate) const SEEN: u8 = 2;
 /// Both flags.
 pub(crate) const FLAGS: u8 = MARK | SEEN;
+
 /// One face of the cavity boundary, recorded while the cavity grows.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct BoundaryFace {
