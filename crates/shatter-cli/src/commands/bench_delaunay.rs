@@ -3,7 +3,7 @@
 use std::time::Instant;
 
 use clap::Args;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use shatter_geom::delaunay;
 
 use crate::args::{Distribution, parse_size};
@@ -27,10 +27,14 @@ pub struct BenchDelaunayArgs {
     /// Print one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,
+    /// Measure every size in this process (by default each of several sizes gets a fresh
+    /// process, so that one size's freed memory does not hide the next one's peak).
+    #[arg(long, hide = true)]
+    pub in_process: bool,
 }
 
 /// One measured size.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Serialize, Deserialize)]
 struct Row {
     points: usize,
     unique_points: usize,
@@ -46,9 +50,9 @@ struct Row {
 }
 
 /// The `--json` report.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Serialize, Deserialize)]
 struct Report {
-    distribution: &'static str,
+    distribution: String,
     seed: u64,
     rows: Vec<Row>,
     /// Process-wide peak RSS (VmHWM) at the end, in bytes.
@@ -59,62 +63,49 @@ struct Report {
 }
 
 /// Runs `shatter bench delaunay`.
+///
+/// With several sizes, each is measured in a fresh `shatter` process: memory the allocator
+/// keeps after one size's result is dropped would otherwise be reused by the next size
+/// without raising the resident set, and that size's peak would read too low.
 pub fn run(args: &BenchDelaunayArgs) -> Result<(), CliError> {
     // clap's parser guarantees a non-empty list of positive sizes.
     let mut rows = Vec::with_capacity(args.sizes.len());
     let mut per_row_peak = true;
+    let mut process_peak_rss_bytes = None;
     if !args.json {
         println!(
             "{:>10} {:>10} {:>12} {:>11} {:>14} {:>12} {:>12}",
             "points", "unique", "tetrahedra", "ms", "points/s", "bytes/point", "result B/pt"
         );
     }
+    let alone = args.sizes.len() > 1 && !args.in_process;
     for &n in &args.sizes {
-        let points = library::random_points(args.distribution, n, args.seed)?;
-        per_row_peak &= memory::reset_peak();
-        let before = memory::current_rss_bytes();
-        let start = Instant::now();
-        let mut tets = delaunay::tetrahedralize(&points)
-            .input_err(format!("{n} random {} points", args.distribution.as_str()))?;
-        let millis = start.elapsed().as_secs_f64() * 1e3;
-        let peak = memory::peak_rss_bytes();
-        let peak_bytes_per_point = match (before, peak) {
-            (Some(b), Some(p)) => Some(p.saturating_sub(b) as f64 / n as f64),
-            _ => None,
+        let row = if alone {
+            let child = measure_in_child(args, n)?;
+            per_row_peak &= child.per_row_peak;
+            process_peak_rss_bytes = process_peak_rss_bytes.max(child.process_peak_rss_bytes);
+            child.rows.into_iter().next().ok_or_else(|| {
+                CliError::internal(format!("the process measuring {n} points gave no row"))
+            })?
+        } else {
+            let (row, alone) = measure(args, n)?;
+            per_row_peak &= alone;
+            row
         };
-        let row = Row {
-            points: n,
-            unique_points: tets.unique_points,
-            tetrahedra: tets.len(),
-            millis,
-            points_per_second: n as f64 / (millis / 1e3).max(1e-9),
-            peak_bytes_per_point,
-            result_bytes_per_point: {
-                tets.shrink_to_fit();
-                tets.heap_bytes() as f64 / n as f64
-            },
-        };
-        drop(tets);
         if !args.json {
-            println!(
-                "{:>10} {:>10} {:>12} {:>11.3} {:>14.0} {:>12} {:>12.1}",
-                row.points,
-                row.unique_points,
-                row.tetrahedra,
-                row.millis,
-                row.points_per_second,
-                row.peak_bytes_per_point
-                    .map_or_else(|| "n/a".to_string(), |b| format!("{b:.1}")),
-                row.result_bytes_per_point
-            );
+            print_row(&row);
         }
         rows.push(row);
     }
     let report = Report {
-        distribution: args.distribution.as_str(),
+        distribution: args.distribution.as_str().to_string(),
         seed: args.seed,
         rows,
-        process_peak_rss_bytes: memory::peak_rss_bytes(),
+        process_peak_rss_bytes: if alone {
+            process_peak_rss_bytes
+        } else {
+            memory::peak_rss_bytes()
+        },
         per_row_peak,
     };
     if args.json {
@@ -131,4 +122,67 @@ pub fn run(args: &BenchDelaunayArgs) -> Result<(), CliError> {
         println!("{scope}");
     }
     Ok(())
+}
+
+/// Times and measures one size in this process; also says whether the peak was reset
+/// for it.
+fn measure(args: &BenchDelaunayArgs, n: usize) -> Result<(Row, bool), CliError> {
+    let points = library::random_points(args.distribution, n, args.seed)?;
+    let alone = memory::reset_peak();
+    let before = memory::current_rss_bytes();
+    let start = Instant::now();
+    let mut tets = delaunay::tetrahedralize(&points)
+        .input_err(format!("{n} random {} points", args.distribution.as_str()))?;
+    let millis = start.elapsed().as_secs_f64() * 1e3;
+    let peak = memory::peak_rss_bytes();
+    let peak_bytes_per_point = match (before, peak) {
+        (Some(b), Some(p)) => Some(p.saturating_sub(b) as f64 / n as f64),
+        _ => None,
+    };
+    tets.shrink_to_fit();
+    let row = Row {
+        points: n,
+        unique_points: tets.unique_points,
+        tetrahedra: tets.len(),
+        millis,
+        points_per_second: n as f64 / (millis / 1e3).max(1e-9),
+        peak_bytes_per_point,
+        result_bytes_per_point: tets.heap_bytes() as f64 / n as f64,
+    };
+    Ok((row, alone))
+}
+
+/// Measures one size in a fresh `shatter bench delaunay --in-process` and reads its report.
+fn measure_in_child(args: &BenchDelaunayArgs, n: usize) -> Result<Report, CliError> {
+    let exe = std::env::current_exe().internal_err("cannot find the shatter executable")?;
+    let output = std::process::Command::new(&exe)
+        .args(["bench", "delaunay", "--in-process", "--json", "--sizes"])
+        .arg(n.to_string())
+        .args(["--distribution", args.distribution.as_str()])
+        .args(["--seed", &args.seed.to_string()])
+        .output()
+        .internal_err(format!("cannot run {}", exe.display()))?;
+    if !output.status.success() {
+        return Err(CliError::internal(format!(
+            "measuring {n} points failed: {}",
+            String::from_utf8_lossy(&output.stderr).trim()
+        )));
+    }
+    serde_json::from_slice(&output.stdout).internal_err(format!(
+        "cannot read the report of the process measuring {n} points"
+    ))
+}
+
+fn print_row(row: &Row) {
+    println!(
+        "{:>10} {:>10} {:>12} {:>11.3} {:>14.0} {:>12} {:>12.1}",
+        row.points,
+        row.unique_points,
+        row.tetrahedra,
+        row.millis,
+        row.points_per_second,
+        row.peak_bytes_per_point
+            .map_or_else(|| "n/a".to_string(), |b| format!("{b:.1}")),
+        row.result_bytes_per_point
+    );
 }
