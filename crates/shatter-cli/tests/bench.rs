@@ -46,6 +46,15 @@ fn bench_delaunay_table_has_a_row_per_size() {
 }
 
 #[test]
+fn bench_delaunay_of_too_few_points_is_an_input_error_with_several_sizes_too() {
+    let dir = tempfile::tempdir().unwrap();
+    for sizes in ["3", "3,100", "100,3"] {
+        shatter(dir.path(), &["bench", "delaunay", "--sizes", sizes])
+            .bad_input(&["3 random uniform points", "at least 4"]);
+    }
+}
+
+#[test]
 fn bench_bad_sizes_are_refused() {
     let dir = tempfile::tempdir().unwrap();
     shatter(dir.path(), &["bench", "delaunay", "--sizes", "10,0"]).bad_input(&["at least 1"]);

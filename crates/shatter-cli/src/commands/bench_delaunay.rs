@@ -163,10 +163,13 @@ fn measure_in_child(args: &BenchDelaunayArgs, n: usize) -> Result<Report, CliErr
         .output()
         .internal_err(format!("cannot run {}", exe.display()))?;
     if !output.status.success() {
-        return Err(CliError::internal(format!(
-            "measuring {n} points failed: {}",
-            String::from_utf8_lossy(&output.stderr).trim()
-        )));
+        // The child printed `error: ...`; pass its message on with its kind of exit.
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        let message = stderr.trim().trim_start_matches("error: ");
+        return Err(match output.status.code() {
+            Some(2) => CliError::input(message),
+            _ => CliError::internal(format!("measuring {n} points failed: {message}")),
+        });
     }
     serde_json::from_slice(&output.stdout).internal_err(format!(
         "cannot read the report of the process measuring {n} points"
