@@ -65,25 +65,23 @@ pub(crate) fn tetrahedralize_within(
     })?;
     // Merged duplicates as (internal slot, internal vertex it coincides with).
     let mut dups: Vec<(u32, u32)> = Vec::new();
-    let too_large = DelaunayError::TooLarge { points: n };
-    if n <= Narrow::MAX_POINTS && narrow_limit >= 5 {
+    // Narrow records when the points allow it; wide ones from the start, or from the
+    // insertion that no longer fitted the narrow ones.
+    let (mut mesh, from) = if n <= Narrow::MAX_POINTS && narrow_limit >= 5 {
         let mut mesh = Mesh::<Narrow>::new(pts, narrow_limit);
         start(&mut mesh, first);
-        let Some(full) = insert_from(&mut mesh, (1, None), first, &mut dups) else {
-            return Ok(finish(mesh, order, &dups));
-        };
-        let mut mesh = mesh.into_wide(usize::MAX);
-        match insert_from(&mut mesh, full, first, &mut dups) {
-            None => Ok(finish(mesh, order, &dups)),
-            Some(_) => Err(too_large),
+        match insert_from(&mut mesh, (1, None), first, &mut dups) {
+            None => return Ok(finish(mesh, order, &dups)),
+            Some(full) => (mesh.into_wide(), full),
         }
     } else {
         let mut mesh = Mesh::<Wide>::new(pts, usize::MAX);
         start(&mut mesh, first);
-        match insert_from(&mut mesh, (1, None), first, &mut dups) {
-            None => Ok(finish(mesh, order, &dups)),
-            Some(_) => Err(too_large),
-        }
+        (mesh, (1, None))
+    };
+    match insert_from(&mut mesh, from, first, &mut dups) {
+        None => Ok(finish(mesh, order, &dups)),
+        Some(_) => Err(DelaunayError::TooLarge { points: n }),
     }
 }
 

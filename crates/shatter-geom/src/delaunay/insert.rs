@@ -78,7 +78,7 @@ impl<S: Store> Mesh<S> {
     /// Whether (unmarked) tetrahedron `t` is in conflict with `p`.
     #[inline]
     fn in_conflict(&self, t: u32, p: &[f64; 3]) -> bool {
-        let v = &self.tets.verts(t);
+        let v = self.tets.verts(t);
         let inf = if v[0] == INF {
             0
         } else if v[1] == INF {
@@ -93,7 +93,7 @@ impl<S: Store> Mesh<S> {
         };
         // Infinite tetrahedron: in conflict when p is strictly beyond its hull face, or on
         // the face's plane and in conflict with the finite tetrahedron behind the face.
-        let o = self.orient_replaced(v, inf, p);
+        let o = self.orient_replaced(&v, inf, p);
         if o != 0.0 {
             return o > 0.0;
         }

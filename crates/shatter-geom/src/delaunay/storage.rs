@@ -202,10 +202,10 @@ impl<S: Store> Mesh<S> {
 
 impl Mesh<Narrow> {
     /// The same triangulation in the wide layout, for when the narrow one is full.
-    pub(crate) fn into_wide(self, limit: usize) -> Mesh<Wide> {
+    pub(crate) fn into_wide(self) -> Mesh<Wide> {
         let tets = Wide::from_narrow(&self.tets, self.tets.len());
         Mesh {
-            limit: limit.min(tets.max_len()),
+            limit: tets.max_len(),
             tets,
             pts: self.pts,
             free: self.free,
