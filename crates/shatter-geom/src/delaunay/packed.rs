@@ -11,9 +11,10 @@
 //!    +-----+-----+-----+-----+-----+-------+-------+-------+-------+--+
 //!           21 bits per vertex      26 bits per adjacency (24-bit tetrahedron, 2-bit face)
 //!   ```
-//!   Each field is read with one 8-byte load at a constant offset inside the record, a
-//!   constant shift and a mask, so access costs about what an array of `u32` costs, in
-//!   three quarters of the memory of the wide layout.
+//!   Each field is read with one 8-byte load at an offset fixed per field (the last two
+//!   adjacency fields share the record's last eight bytes), a shift and a mask, so access
+//!   costs about what an array of `u32` costs, in three quarters of the memory of the
+//!   wide layout.
 //! - [`Wide`]: two arrays of `[u32; 4]` (vertices with the flags in the top bits of `v3`,
 //!   and adjacency), 32 bytes per tetrahedron, for anything larger.
 //!
