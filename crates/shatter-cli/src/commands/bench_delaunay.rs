@@ -88,8 +88,8 @@ pub fn run(args: &BenchDelaunayArgs) -> Result<(), CliError> {
                 CliError::internal(format!("the process measuring {n} points gave no row"))
             })?
         } else {
-            let (row, alone) = measure(args, n)?;
-            per_row_peak &= alone;
+            let (row, reset) = measure(args, n)?;
+            per_row_peak &= reset;
             row
         };
         if !args.json {
@@ -128,7 +128,7 @@ pub fn run(args: &BenchDelaunayArgs) -> Result<(), CliError> {
 /// for it.
 fn measure(args: &BenchDelaunayArgs, n: usize) -> Result<(Row, bool), CliError> {
     let points = library::random_points(args.distribution, n, args.seed)?;
-    let alone = memory::reset_peak();
+    let reset = memory::reset_peak();
     let before = memory::current_rss_bytes();
     let start = Instant::now();
     let mut tets = delaunay::tetrahedralize(&points)
@@ -149,7 +149,7 @@ fn measure(args: &BenchDelaunayArgs, n: usize) -> Result<(Row, bool), CliError> 
         peak_bytes_per_point,
         result_bytes_per_point: tets.heap_bytes() as f64 / n as f64,
     };
-    Ok((row, alone))
+    Ok((row, reset))
 }
 
 /// Measures one size in a fresh `shatter bench delaunay --in-process` and reads its report.
