@@ -8,6 +8,7 @@ pub mod delaunay;
 pub mod fracture;
 pub mod io;
 pub mod mesh;
+pub mod model;
 pub mod sampling;
 pub mod shapes;
 
