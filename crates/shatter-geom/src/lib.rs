@@ -11,6 +11,7 @@ pub mod mesh;
 pub mod model;
 pub mod sampling;
 pub mod shapes;
+pub mod util;
 
 pub use glam::{DMat3, DVec3};
 pub use mesh::TriMesh;

@@ -5,18 +5,18 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
-use super::convex::convex_pieces;
-use super::massprops::mass_properties;
-use super::merge::merge_small;
+use super::bonds::merge::merge_small;
+use super::kernel::convex::convex_pieces;
+use super::kernel::{Piece, SURFACE, mesh_scale};
+use super::methods::slice::{random_planes, slice};
+use super::methods::tetra::{SLIVER_VOLUME_FRACTION, TetraOptions, tetra};
+use super::methods::voronoi::voronoi;
 use super::params::{FractureError, FractureParams, Method, Pattern};
-use super::piece::{Piece, SURFACE};
-use super::seeds::{seeds, splinter_metric};
-use super::slice::{random_planes, slice};
-use super::tetra::{SLIVER_VOLUME_FRACTION, TetraOptions, tetra};
+use super::seeds::patterns::{seeds, splinter_metric};
 use super::types::{Bond, Fracture, Fragment};
 use super::validate::validated_piece;
-use super::voronoi::{mesh_scale, voronoi};
 use crate::TriMesh;
+use crate::mesh::mass_properties;
 
 /// Relative distance (of the mesh's size) within which a vertex counts as on a plane.
 const PLANE_EPS: f64 = 1e-10;

@@ -6,33 +6,23 @@
 //! triangles are flagged surface or interior, convex pieces for collision, mass
 //! properties, and the bond graph of fragments sharing a face.
 //!
-//! Files, one per step: `validate` (input checks), `piece` (working solid), `clip` and
-//! `cap` (plane clipping with capping), `seeds`, `voronoi`, `slice`, `tetra`, `bonds`
-//! (cap overlap), `convex` (collision pieces), `massprops`, `entry` (the public function).
+//! Folders, one per concern: `kernel` (the working solid `Piece`, planes, exact clipping
+//! with caps kept as polygons, cap triangulation, the convex decomposition for
+//! collision), `methods` (`tetra`, `voronoi`, `slice`), `seeds` (patterns, inside tests
+//! and sampling), `bonds` (bonds through matching caps, merging small pieces); beside them
+//! `params` and `types` (the public types), `validate` (input checks) and `entry` (the
+//! public function).
 
 mod bonds;
-mod cap;
-mod clip;
-mod convex;
 mod entry;
-mod inside;
-mod massprops;
-mod merge;
+mod kernel;
+mod methods;
 mod params;
-mod piece;
 mod seeds;
-mod slice;
-mod tetra;
 mod types;
 mod validate;
-mod voronoi;
-
-#[cfg(test)]
-mod face_tests;
-#[cfg(test)]
-mod fast_path_tests;
 
 pub use entry::fracture;
+pub use methods::tetra::{SLIVER_QUALITY, SLIVER_VOLUME_FRACTION};
 pub use params::{FractureError, FractureParams, Method, Pattern, Placement};
-pub use tetra::{SLIVER_QUALITY, SLIVER_VOLUME_FRACTION};
 pub use types::{Bond, Fracture, Fragment};

@@ -1,6 +1,7 @@
 //! Topology checks: closed, manifold, consistently wound, outward.
 
 use super::TriMesh;
+use crate::util::UnionFind;
 
 /// What [`TriMesh::check`] found, counted on the welded mesh.
 ///
@@ -79,31 +80,6 @@ struct EdgeUse {
     forward: bool,
 }
 
-/// Union–find over dense indices.
-pub(super) struct DisjointSets(Vec<u32>);
-
-impl DisjointSets {
-    pub(super) fn new(n: usize) -> Self {
-        Self((0..n as u32).collect())
-    }
-
-    pub(super) fn find(&mut self, mut x: u32) -> u32 {
-        while self.0[x as usize] != x {
-            let parent = self.0[self.0[x as usize] as usize];
-            self.0[x as usize] = parent;
-            x = parent;
-        }
-        x
-    }
-
-    pub(super) fn union(&mut self, a: u32, b: u32) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        if ra != rb {
-            self.0[ra.max(rb) as usize] = ra.min(rb);
-        }
-    }
-}
-
 /// Whether the triangle `a b c` has zero area, decided exactly: it does when its
 /// projections onto the three coordinate planes all have zero signed area.
 pub(super) fn is_degenerate(a: glam::DVec3, b: glam::DVec3, c: glam::DVec3) -> bool {
@@ -139,7 +115,7 @@ impl TriMesh {
             ..MeshReport::default()
         };
         let mut uses = Vec::with_capacity(3 * mesh.triangles.len());
-        let mut vertex_sets = DisjointSets::new(n);
+        let mut vertex_sets = UnionFind::new(n);
         let mut used = vec![false; n];
         let mut valid = Vec::with_capacity(mesh.triangles.len());
         for (t, tri) in mesh.triangles.iter().enumerate() {
@@ -177,13 +153,13 @@ impl TriMesh {
                     }
                 });
                 used[u as usize] = true;
-                vertex_sets.union(u, v);
+                vertex_sets.union(u as usize, v as usize);
             }
         }
         uses.sort_unstable_by_key(|e| (e.lo, e.hi));
         // Corners of the same vertex joined across shared edges: a vertex whose corners end
         // up in several groups has several fans.
-        let mut corner_sets = DisjointSets::new(3 * mesh.triangles.len());
+        let mut corner_sets = UnionFind::new(3 * mesh.triangles.len());
         for group in uses.chunk_by(|a, b| (a.lo, a.hi) == (b.lo, b.hi)) {
             match group.len() {
                 1 => report.boundary_edges += 1,
@@ -195,8 +171,8 @@ impl TriMesh {
                 _ => report.non_manifold_edges += 1,
             }
             for other in &group[1..] {
-                corner_sets.union(group[0].corner_lo, other.corner_lo);
-                corner_sets.union(group[0].corner_hi, other.corner_hi);
+                corner_sets.union(group[0].corner_lo as usize, other.corner_lo as usize);
+                corner_sets.union(group[0].corner_hi as usize, other.corner_hi as usize);
             }
         }
         let mut fan_of_vertex: Vec<Option<u32>> = vec![None; n];
@@ -207,7 +183,7 @@ impl TriMesh {
                 continue;
             }
             for (k, &v) in tri.iter().enumerate() {
-                let root = corner_sets.find(3 * t as u32 + k as u32);
+                let root = corner_sets.find(3 * t + k) as u32;
                 match fan_of_vertex[v as usize] {
                     None => fan_of_vertex[v as usize] = Some(root),
                     Some(r) if r != root => non_manifold[v as usize] = true,
@@ -217,7 +193,7 @@ impl TriMesh {
         }
         report.non_manifold_vertices = non_manifold.iter().filter(|&&b| b).count();
         report.components = (0..n as u32)
-            .filter(|&v| used[v as usize] && vertex_sets.find(v) == v)
+            .filter(|&v| used[v as usize] && vertex_sets.find(v as usize) == v as usize)
             .count();
         if report.invalid_triangles == 0 {
             report.signed_volume = mesh.signed_volume();

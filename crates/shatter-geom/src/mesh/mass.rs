@@ -8,6 +8,41 @@ use glam::{DMat3, DVec3};
 
 use super::TriMesh;
 
+/// Volume, centroid and inertia tensor (about the centroid, unit density) of the solid
+/// bounded by `tris` over `pos` (closed, outward).
+pub(crate) fn mass_properties(pos: &[DVec3], tris: &[[u32; 3]]) -> (f64, DVec3, DMat3) {
+    let Some(&o) = pos.first() else {
+        return (0.0, DVec3::ZERO, DMat3::ZERO);
+    };
+    // Pass 1: volume and centroid, with the first vertex as origin for precision.
+    let mut v6 = 0.0;
+    let mut acc = DVec3::ZERO;
+    for t in tris {
+        let [a, b, c] = t.map(|i| pos[i as usize] - o);
+        let d = a.dot(b.cross(c));
+        v6 += d;
+        acc += d * (a + b + c);
+    }
+    if v6 == 0.0 {
+        let mean = pos.iter().copied().sum::<DVec3>() / pos.len() as f64;
+        return (0.0, mean, DMat3::ZERO);
+    }
+    let centroid = o + acc / (4.0 * v6);
+    // Pass 2: covariance about the centroid, summing signed tetrahedra (centroid, a, b, c):
+    // C = det/120 · (Σ pᵢpᵢᵀ + (Σ pᵢ)(Σ pᵢ)ᵀ) with p the three corners.
+    let mut cov = DMat3::ZERO;
+    for t in tris {
+        let [a, b, c] = t.map(|i| pos[i as usize] - centroid);
+        let d = a.dot(b.cross(c));
+        let s = a + b + c;
+        let outer = |x: DVec3, y: DVec3| DMat3::from_cols(x * y.x, x * y.y, x * y.z);
+        cov += (outer(a, a) + outer(b, b) + outer(c, c) + outer(s, s)) * (d / 120.0);
+    }
+    let tr = cov.x_axis.x + cov.y_axis.y + cov.z_axis.z;
+    let inertia = DMat3::from_diagonal(DVec3::splat(tr)) - cov;
+    (v6 / 6.0, centroid, inertia)
+}
+
 impl TriMesh {
     /// Volume enclosed by a closed mesh: the absolute value of
     /// [`signed_volume`](TriMesh::signed_volume).
@@ -35,38 +70,8 @@ impl TriMesh {
     /// assert!((i.y_axis.y - 2.0 * 5.0 / 12.0).abs() < 1e-12);
     /// ```
     pub fn inertia(&self) -> DMat3 {
-        let Some(&o) = self.positions.first() else {
-            return DMat3::ZERO;
-        };
-        let mut cov = DMat3::ZERO;
-        let mut v6 = 0.0;
-        let mut first = DVec3::ZERO;
-        for t in 0..self.triangles.len() {
-            let [a, b, c] = self.triangle(t);
-            let (a, b, c) = (a - o, b - o, c - o);
-            let det = a.dot(b.cross(c));
-            v6 += det;
-            first += det * (a + b + c);
-            // A·M·Aᵀ with M = [[2,1,1],[1,2,1],[1,1,2]] = sum of outer products
-            // x xᵀ over the columns plus (a+b+c)(a+b+c)ᵀ.
-            let s = a + b + c;
-            let amat = outer(a, a) + outer(b, b) + outer(c, c) + outer(s, s);
-            cov += amat * (det / 120.0);
-        }
-        let mass = v6 / 6.0;
-        if mass == 0.0 {
-            return DMat3::ZERO;
-        }
-        // First moment: Σ det/6 · (a+b+c)/4 = Σ det (a+b+c) / 24.
-        let com = first / 24.0 / mass;
-        let centred = cov - outer(com, com) * mass;
-        let trace = centred.x_axis.x + centred.y_axis.y + centred.z_axis.z;
-        DMat3::from_diagonal(DVec3::splat(trace)) - centred
+        mass_properties(&self.positions, &self.triangles).2
     }
-}
-
-fn outer(a: DVec3, b: DVec3) -> DMat3 {
-    DMat3::from_cols(a * b.x, a * b.y, a * b.z)
 }
 
 #[cfg(test)]

@@ -8,7 +8,9 @@ mod shells;
 mod trimesh;
 mod validate;
 mod weld;
+pub(crate) use mass::mass_properties;
 pub(crate) use weld::position_key;
+pub(crate) use winding::winding_number;
 mod winding;
 
 pub use check::MeshReport;

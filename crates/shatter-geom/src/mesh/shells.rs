@@ -4,8 +4,8 @@
 use glam::DVec3;
 
 use super::TriMesh;
-use super::check::DisjointSets;
 use super::winding::solid_angle;
+use crate::util::UnionFind;
 
 /// One connected component of a welded mesh.
 pub(super) struct Shell {
@@ -38,15 +38,15 @@ pub(super) enum ShellOrientation {
 
 /// The shells of a welded mesh whose indices are in range.
 pub(super) fn shells(mesh: &TriMesh) -> Vec<Shell> {
-    let mut sets = DisjointSets::new(mesh.positions.len());
+    let mut sets = UnionFind::new(mesh.positions.len());
     for &[a, b, c] in &mesh.triangles {
-        sets.union(a, b);
-        sets.union(b, c);
+        sets.union(a as usize, b as usize);
+        sets.union(b as usize, c as usize);
     }
     let mut index_of_root = std::collections::HashMap::new();
     let mut out: Vec<Shell> = Vec::new();
     for (t, tri) in mesh.triangles.iter().enumerate() {
-        let root = sets.find(tri[0]);
+        let root = sets.find(tri[0] as usize);
         let k = *index_of_root.entry(root).or_insert_with(|| {
             let p = mesh.positions[tri[0] as usize];
             out.push(Shell {

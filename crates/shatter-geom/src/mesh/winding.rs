@@ -19,6 +19,17 @@ pub(crate) fn solid_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
     2.0 * numerator.atan2(denominator)
 }
 
+/// Generalized winding number of the surface `tris` over `pos` around `p` (see
+/// [`TriMesh::winding_number`]).
+pub(crate) fn winding_number(pos: &[DVec3], tris: &[[u32; 3]], p: DVec3) -> f64 {
+    let mut total = 0.0;
+    for t in tris {
+        let [a, b, c] = t.map(|i| pos[i as usize] - p);
+        total += solid_angle(a, b, c);
+    }
+    total / (4.0 * std::f64::consts::PI)
+}
+
 impl TriMesh {
     /// Generalized winding number of `p`: the solid angle the outward surface subtends at
     /// `p`, over 4π. For a closed outward mesh it is 1 inside, 0 outside (½ on the
@@ -33,12 +44,7 @@ impl TriMesh {
     /// assert!(cube.winding_number(DVec3::splat(2.0)).abs() < 1e-9);
     /// ```
     pub fn winding_number(&self, p: DVec3) -> f64 {
-        let mut total = 0.0;
-        for t in 0..self.triangles.len() {
-            let [a, b, c] = self.triangle(t);
-            total += solid_angle(a - p, b - p, c - p);
-        }
-        total / (4.0 * std::f64::consts::PI)
+        winding_number(&self.positions, &self.triangles, p)
     }
 
     /// Whether `p` is inside: winding number above ½.

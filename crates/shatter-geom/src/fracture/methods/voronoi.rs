@@ -4,10 +4,11 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::bonds::cap_bonds;
-use super::clip::{Plane, clip, clip_keeping_faces};
-use super::piece::Piece;
-use super::types::Bond;
+use crate::fracture::Bond;
+use crate::fracture::bonds::caps::cap_bonds;
+use crate::fracture::kernel::clip::{clip, clip_keeping_faces};
+use crate::fracture::kernel::{Piece, Plane, SURFACE, mesh_scale};
+use crate::util::bounds;
 
 /// Clips `mesh` by the Voronoi cells of `seeds` under the diagonal metric `metric`
 /// (`|x|² = Σ metricᵢ xᵢ²`; all ones for the Euclidean distance). Returns the fragments
@@ -241,18 +242,9 @@ fn cell_faces(
     Some(poly.tags)
 }
 
-/// Length of the bounding-box diagonal of a piece (1 for an empty one).
-pub(crate) fn mesh_scale(p: &Piece) -> f64 {
-    if p.pos.is_empty() {
-        return 1.0;
-    }
-    let (lo, hi) = super::seeds::bounds(&p.pos);
-    (hi - lo).length().max(f64::MIN_POSITIVE)
-}
-
 /// A closed box around `mesh` (its bounds grown by a tenth), all faces tagged surface.
 fn box_piece(mesh: &Piece) -> Piece {
-    let (lo, hi) = super::seeds::bounds(&mesh.pos);
+    let (lo, hi) = bounds(&mesh.pos);
     let pad = (hi - lo) * 0.1 + DVec3::splat(1e-9);
     let (lo, hi) = (lo - pad, hi + pad);
     let pos: Vec<DVec3> = (0..8)
@@ -279,7 +271,7 @@ fn box_piece(mesh: &Piece) -> Piece {
     }
     Piece {
         pos,
-        tags: vec![super::piece::SURFACE; 12],
+        tags: vec![SURFACE; 12],
         faces: Vec::new(),
         tris,
     }

@@ -4,12 +4,12 @@ use glam::DVec3;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
-use super::bonds::cap_bonds;
-use super::clip::{Plane, split_keeping_faces};
-use super::piece::Piece;
-use super::seeds::{bounds, unit_vector};
-use super::types::Bond;
-use super::voronoi::mesh_scale;
+use crate::fracture::Bond;
+use crate::fracture::bonds::caps::cap_bonds;
+use crate::fracture::kernel::clip::split_keeping_faces;
+use crate::fracture::kernel::{Piece, Plane, mesh_scale};
+use crate::fracture::seeds::patterns::unit_vector;
+use crate::util::bounds;
 
 /// `k` random planes through the mesh: a random direction through a random point of
 /// the middle half of the bounds (so that most planes cut it).

@@ -6,9 +6,9 @@ use std::collections::BTreeMap;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
-use super::cap::plane_frame;
-use super::piece::{Piece, SURFACE};
-use super::types::Bond;
+use crate::fracture::Bond;
+use crate::fracture::kernel::cap::plane_frame;
+use crate::fracture::kernel::{Piece, SURFACE};
 
 /// One fragment's caps on a plane: fragment, 2D triangles, 2D bounds.
 type CapSide = (usize, Vec<[DVec2; 3]>, (DVec2, DVec2));

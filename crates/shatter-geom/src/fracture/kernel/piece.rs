@@ -2,15 +2,13 @@
 //! mesh whose triangles carry the tag of the cut that created them.
 
 use std::collections::hash_map::Entry;
-use std::collections::{HashMap, HashSet};
-use std::hash::{BuildHasherDefault, Hasher};
 
 use glam::DVec3;
 
-use super::cap::{loops, triangulate_cap};
-use super::clip::Plane;
+use super::Face;
 use crate::TriMesh;
 use crate::mesh::position_key;
+use crate::util::{FastMap, UnionFind};
 
 /// Tag of a triangle on the original surface (not created by a cut).
 pub(crate) const SURFACE: u64 = u64::MAX;
@@ -26,64 +24,6 @@ pub(crate) struct Piece {
     pub tris: Vec<[u32; 3]>,
     pub tags: Vec<u64>,
     pub faces: Vec<Face>,
-}
-
-/// A cap kept as a polygon: the region of `plane` bounded by `edges`, directed
-/// counter-clockwise seen from the side `plane.n` points to (outside the solid), so the
-/// region lies to the left of each edge. Its triangles will carry `plane.tag`.
-///
-/// A cell of a Voronoi fracture is cut by one plane after another; each cut crosses the
-/// caps of the earlier ones. Triangulated caps would gain a vertex wherever the cut
-/// crosses one of their diagonals, so caps grew to several times their corners and
-/// every later cut and cap paid for them. A polygon is cut by splitting its edges and
-/// closing each side along the cut line, and is triangulated once, at the end.
-#[derive(Debug, Clone)]
-pub(crate) struct Face {
-    pub plane: Plane,
-    pub edges: Vec<(u32, u32)>,
-}
-
-impl Face {
-    /// The face's triangles ([`triangulate_cap`]), wound like the face, as indices into
-    /// `pos`.
-    pub fn triangles(&self, pos: &[DVec3]) -> Vec<[u32; 3]> {
-        // The cap's triangulation takes the edges as the solid's side sees them.
-        let rim: Vec<(u32, u32)> = self.edges.iter().map(|&(a, b)| (b, a)).collect();
-        triangulate_cap(pos, &rim, &self.plane)
-    }
-
-    /// The face as one face per region, when that is plain from its loops: one loop, or
-    /// loops all counter-clockwise (no holes, so each bounds a region of its own).
-    /// `None` when a loop runs clockwise (a hole, which belongs to some other loop's
-    /// region) or the loops touch.
-    fn regions(&self, pos: &[DVec3]) -> Option<Vec<Face>> {
-        let loops = loops(&self.edges)?;
-        let counter_clockwise = |lp: &[u32]| {
-            let o = pos[lp[0] as usize];
-            let area: DVec3 = (0..lp.len())
-                .map(|k| (pos[lp[k] as usize] - o).cross(pos[lp[(k + 1) % lp.len()] as usize] - o))
-                .sum();
-            area.dot(self.plane.n) > 0.0
-        };
-        if loops.len() > 1 && !loops.iter().all(|lp| counter_clockwise(lp)) {
-            return None;
-        }
-        let plane = self.plane;
-        let edges = |lp: Vec<u32>| {
-            (0..lp.len())
-                .map(|k| (lp[k], lp[(k + 1) % lp.len()]))
-                .collect()
-        };
-        Some(
-            loops
-                .into_iter()
-                .map(|lp| Face {
-                    plane,
-                    edges: edges(lp),
-                })
-                .collect(),
-        )
-    }
 }
 
 impl Piece {
@@ -320,75 +260,11 @@ impl Piece {
     }
 }
 
-/// A small union-find with path halving.
-#[derive(Debug, Clone)]
-pub(crate) struct UnionFind {
-    parent: Vec<usize>,
+/// Length of the bounding-box diagonal of a piece (1 for an empty one).
+pub(crate) fn mesh_scale(p: &Piece) -> f64 {
+    if p.pos.is_empty() {
+        return 1.0;
+    }
+    let (lo, hi) = crate::util::bounds(&p.pos);
+    (hi - lo).length().max(f64::MIN_POSITIVE)
 }
-
-impl UnionFind {
-    pub fn new(n: usize) -> Self {
-        Self {
-            parent: (0..n).collect(),
-        }
-    }
-
-    pub fn find(&mut self, mut x: usize) -> usize {
-        while self.parent[x] != x {
-            self.parent[x] = self.parent[self.parent[x]];
-            x = self.parent[x];
-        }
-        x
-    }
-
-    /// Joins the sets of `a` and `b`; the smaller root index becomes the root.
-    pub fn union(&mut self, a: usize, b: usize) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        if ra != rb {
-            let (lo, hi) = (ra.min(rb), ra.max(rb));
-            self.parent[hi] = lo;
-        }
-    }
-}
-
-/// A fast multiplicative hasher for the small integer keys of the clipping maps (the
-/// default SipHash dominated the profile; the keys are not attacker-controlled).
-#[derive(Debug, Default, Clone, Copy)]
-pub(crate) struct FastHasher(u64);
-
-impl FastHasher {
-    #[inline]
-    fn add(&mut self, word: u64) {
-        self.0 = (self.0.rotate_left(5) ^ word).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-}
-
-impl Hasher for FastHasher {
-    #[inline]
-    fn finish(&self) -> u64 {
-        self.0
-    }
-    #[inline]
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.add(u64::from(b));
-        }
-    }
-    #[inline]
-    fn write_u32(&mut self, i: u32) {
-        self.add(u64::from(i));
-    }
-    #[inline]
-    fn write_u64(&mut self, i: u64) {
-        self.add(i);
-    }
-    #[inline]
-    fn write_usize(&mut self, i: usize) {
-        self.add(i as u64);
-    }
-}
-
-/// A hash map with [`FastHasher`].
-pub(crate) type FastMap<K, V> = HashMap<K, V, BuildHasherDefault<FastHasher>>;
-/// A hash set with [`FastHasher`].
-pub(crate) type FastSet<K> = HashSet<K, BuildHasherDefault<FastHasher>>;

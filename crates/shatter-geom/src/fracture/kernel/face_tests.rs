@@ -7,10 +7,10 @@ use glam::DVec3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use super::clip::{Plane, clip, clip_keeping_faces};
+use super::clip::{clip, clip_keeping_faces};
 use super::fast_path_tests::closed;
-use super::piece::Piece;
-use super::voronoi::delaunay_neighbours;
+use super::{Piece, Plane};
+use crate::fracture::methods::voronoi::delaunay_neighbours;
 use crate::shapes;
 
 fn plane(n: DVec3, p: DVec3, tag: u64) -> Plane {
@@ -146,7 +146,7 @@ fn voronoi_cells_are_the_same_solids_with_faces_as_with_caps() {
         ),
     ];
     for (name, mesh) in &meshes {
-        let (lo, hi) = super::seeds::bounds(&mesh.pos);
+        let (lo, hi) = crate::util::bounds(&mesh.pos);
         let seeds: Vec<DVec3> = (0..40)
             .map(|_| lo + (hi - lo) * DVec3::new(rng.random(), rng.random(), rng.random()))
             .collect();
@@ -206,11 +206,11 @@ fn closed_with_faces(p: &Piece) -> bool {
 fn convex_decomposition_parts_with_faces_are_closed_and_add_up() {
     let bird = Piece::from_mesh_welded(&shapes::bird());
     let mut rng = ChaCha8Rng::seed_from_u64(4);
-    let (lo, hi) = super::seeds::bounds(&bird.pos);
+    let (lo, hi) = crate::util::bounds(&bird.pos);
     let seeds: Vec<DVec3> = (0..40)
         .map(|_| lo + (hi - lo) * DVec3::new(rng.random(), rng.random(), rng.random()))
         .collect();
-    let (cells, _) = super::voronoi::voronoi(&bird, &seeds, DVec3::ONE, 1e-10);
+    let (cells, _) = crate::fracture::methods::voronoi::voronoi(&bird, &seeds, DVec3::ONE, 1e-10);
     let mut decomposed = 0;
     for (i, cell) in cells.iter().enumerate() {
         let parts = super::convex::decomposition_parts(cell).unwrap_or_else(|| vec![cell.clone()]);

@@ -4,72 +4,10 @@ use glam::DVec3;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
-use super::inside::InsideTester;
-use super::params::Pattern;
-use super::piece::Piece;
-
-/// Tries per wanted point before sampling gives up on the inside test.
-const TRIES_PER_POINT: usize = 200;
-
-/// Samples inside a closed solid by rejection from its bounds.
-pub(crate) struct InsideSampler<'a> {
-    tester: InsideTester<'a>,
-    lo: DVec3,
-    hi: DVec3,
-}
-
-impl<'a> InsideSampler<'a> {
-    pub fn new(piece: &'a Piece) -> Self {
-        let tester = InsideTester::new(piece);
-        let (lo, hi) = tester.bounds();
-        Self { tester, lo, hi }
-    }
-
-    /// Is `p` inside the solid?
-    pub fn contains(&self, p: DVec3) -> bool {
-        self.tester.contains(p)
-    }
-
-    /// A uniform point of the bounding box.
-    pub fn in_box(&self, rng: &mut ChaCha8Rng) -> DVec3 {
-        let t = DVec3::new(rng.random(), rng.random(), rng.random());
-        self.lo + (self.hi - self.lo) * t
-    }
-
-    /// Draws from `draw` until the point is inside (bounded tries; the last draw is
-    /// returned if none was inside, which the caller's cells tolerate).
-    pub fn inside_from(
-        &self,
-        rng: &mut ChaCha8Rng,
-        mut draw: impl FnMut(&mut ChaCha8Rng) -> DVec3,
-    ) -> DVec3 {
-        let mut p = draw(rng);
-        for _ in 0..TRIES_PER_POINT {
-            if self.contains(p) {
-                return p;
-            }
-            p = draw(rng);
-        }
-        p
-    }
-
-    /// A uniform point inside the solid.
-    pub fn uniform(&self, rng: &mut ChaCha8Rng) -> DVec3 {
-        self.inside_from(rng, |r| self.in_box(r))
-    }
-
-    pub fn bounds(&self) -> (DVec3, DVec3) {
-        (self.lo, self.hi)
-    }
-}
-
-/// Axis-aligned bounds of a non-empty point set.
-pub(crate) fn bounds(pos: &[DVec3]) -> (DVec3, DVec3) {
-    pos.iter().fold(
-        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-        |(lo, hi), &p| (lo.min(p), hi.max(p)),
-    )
-}
+use super::inside::InsideSampler;
+use crate::fracture::Pattern;
+use crate::fracture::kernel::Piece;
+use crate::util::bounds;
 
 /// A standard normal deviate (Box–Muller).
 pub(crate) fn gaussian(rng: &mut ChaCha8Rng) -> f64 {

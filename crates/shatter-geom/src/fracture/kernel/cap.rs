@@ -4,9 +4,9 @@
 use glam::{DVec2, DVec3};
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 
-use super::clip::Plane;
-use super::piece::FastMap;
+use super::Plane;
 use crate::mesh::position_key;
+use crate::util::FastMap;
 
 /// An orthonormal frame `(u, v)` of the plane with `u × v` along `n`.
 pub(crate) fn plane_frame(n: DVec3) -> (DVec3, DVec3) {

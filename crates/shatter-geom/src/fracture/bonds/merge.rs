@@ -5,8 +5,9 @@ use std::collections::BTreeMap;
 
 use glam::DVec3;
 
-use super::piece::{Piece, UnionFind};
-use super::types::Bond;
+use crate::fracture::Bond;
+use crate::fracture::kernel::Piece;
+use crate::util::UnionFind;
 
 /// Merges every piece whose volume is below `min_volume` into the bonded neighbour it
 /// shares the largest area with (repeatedly, smallest first), or, with no bonded

@@ -4,9 +4,12 @@
 
 use glam::{DVec2, DVec3};
 
-use super::massprops::winding_number;
-use super::piece::Piece;
-use super::seeds::bounds;
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
+
+use crate::fracture::kernel::Piece;
+use crate::mesh::winding_number;
+use crate::util::bounds;
 
 /// Inside tests against one closed, outward solid.
 pub(crate) struct InsideTester<'a> {
@@ -88,5 +91,60 @@ impl<'a> InsideTester<'a> {
 
     fn winding(&self, p: DVec3) -> bool {
         winding_number(&self.piece.pos, &self.piece.tris, p) > 0.5
+    }
+}
+
+/// Tries per wanted point before sampling gives up on the inside test.
+const TRIES_PER_POINT: usize = 200;
+
+/// Samples inside a closed solid by rejection from its bounds.
+pub(crate) struct InsideSampler<'a> {
+    tester: InsideTester<'a>,
+    lo: DVec3,
+    hi: DVec3,
+}
+
+impl<'a> InsideSampler<'a> {
+    pub fn new(piece: &'a Piece) -> Self {
+        let tester = InsideTester::new(piece);
+        let (lo, hi) = tester.bounds();
+        Self { tester, lo, hi }
+    }
+
+    /// Is `p` inside the solid?
+    pub fn contains(&self, p: DVec3) -> bool {
+        self.tester.contains(p)
+    }
+
+    /// A uniform point of the bounding box.
+    pub fn in_box(&self, rng: &mut ChaCha8Rng) -> DVec3 {
+        let t = DVec3::new(rng.random(), rng.random(), rng.random());
+        self.lo + (self.hi - self.lo) * t
+    }
+
+    /// Draws from `draw` until the point is inside (bounded tries; the last draw is
+    /// returned if none was inside, which the caller's cells tolerate).
+    pub fn inside_from(
+        &self,
+        rng: &mut ChaCha8Rng,
+        mut draw: impl FnMut(&mut ChaCha8Rng) -> DVec3,
+    ) -> DVec3 {
+        let mut p = draw(rng);
+        for _ in 0..TRIES_PER_POINT {
+            if self.contains(p) {
+                return p;
+            }
+            p = draw(rng);
+        }
+        p
+    }
+
+    /// A uniform point inside the solid.
+    pub fn uniform(&self, rng: &mut ChaCha8Rng) -> DVec3 {
+        self.inside_from(rng, |r| self.in_box(r))
+    }
+
+    pub fn bounds(&self) -> (DVec3, DVec3) {
+        (self.lo, self.hi)
     }
 }

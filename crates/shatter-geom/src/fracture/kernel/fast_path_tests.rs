@@ -6,9 +6,9 @@ use glam::{DVec2, DVec3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+use super::Piece;
 use super::cap::ear_clip;
-use super::piece::Piece;
-use super::voronoi::{delaunay_neighbours, voronoi_with};
+use crate::fracture::methods::voronoi::{delaunay_neighbours, voronoi_with};
 use crate::shapes;
 
 fn coord(p: DVec2) -> robust::Coord<f64> {
@@ -164,7 +164,7 @@ fn both_ways(mesh: &Piece, seeds: &[DVec3], metric: DVec3) -> (Vec<f64>, Vec<f64
 #[test]
 fn delaunay_neighbour_cells_equal_cells_cut_by_every_bisector() {
     let bird = Piece::from_mesh_welded(&shapes::bird());
-    let (lo, hi) = super::seeds::bounds(&bird.pos);
+    let (lo, hi) = crate::util::bounds(&bird.pos);
     let mut rng = ChaCha8Rng::seed_from_u64(9);
     for metric in [DVec3::ONE, DVec3::new(1.0, 9.0, 9.0)] {
         let seeds: Vec<DVec3> = (0..60)
@@ -194,7 +194,7 @@ fn delaunay_neighbours_need_a_tetrahedralization() {
         .collect();
     assert!(delaunay_neighbours(&flat, DVec3::ONE).is_none());
     let cube = Piece::from_mesh_welded(&shapes::cube());
-    let (cells, _) = super::voronoi::voronoi(&cube, &flat, DVec3::ONE, 1e-10);
+    let (cells, _) = crate::fracture::methods::voronoi::voronoi(&cube, &flat, DVec3::ONE, 1e-10);
     let sum: f64 = cells.iter().map(Piece::volume).sum();
     assert!((sum - cube.volume()).abs() < 1e-9 * cube.volume());
     assert_eq!(cells.len(), 10);
@@ -219,16 +219,17 @@ pub(super) fn closed(p: &Piece) -> bool {
 
 #[test]
 fn split_shares_one_cap_and_matches_two_clips() {
-    use super::clip::{Plane, clip, split};
+    use super::Plane;
+    use super::clip::{clip, split};
     let bird = Piece::from_mesh_welded(&shapes::bird());
     let total = bird.volume();
     let mut rng = ChaCha8Rng::seed_from_u64(3);
-    let (lo, hi) = super::seeds::bounds(&bird.pos);
+    let (lo, hi) = crate::util::bounds(&bird.pos);
     // Random planes, and the planes of mesh faces (a face then lies in the plane, as
     // in convex decomposition).
     let mut planes = Vec::new();
     for _ in 0..20 {
-        let n = super::seeds::unit_vector(&mut rng);
+        let n = crate::fracture::seeds::patterns::unit_vector(&mut rng);
         let p = lo + (hi - lo) * DVec3::new(rng.random(), rng.random(), rng.random());
         planes.push(Plane {
             n,

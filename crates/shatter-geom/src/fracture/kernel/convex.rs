@@ -6,8 +6,9 @@
 
 use glam::DVec3;
 
-use super::clip::{Plane, split_keeping_faces};
-use super::piece::{FastMap, Piece, SURFACE};
+use super::clip::split_keeping_faces;
+use super::{Piece, Plane, SURFACE};
+use crate::util::{FastMap, UnionFind};
 
 /// Relative tolerance (of the fragment's size) for convexity tests.
 const CONVEX_TOL: f64 = 1e-2;
@@ -59,7 +60,7 @@ pub(crate) const TET_FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], 
 /// convex within the tolerance or `MAX_PIECES` is reached. The clipping is exact, so
 /// the parts cover the solid without gaps.
 pub(crate) fn decomposition_parts(piece: &Piece) -> Option<Vec<Piece>> {
-    let tol = CONVEX_TOL * super::voronoi::mesh_scale(piece);
+    let tol = CONVEX_TOL * super::mesh_scale(piece);
     let first = worst_face(piece, tol);
     first.1?;
     let mut parts = Vec::new();
@@ -138,12 +139,12 @@ const NO_NEIGHBOUR: u32 = u32::MAX;
 /// holds only the unpaired ones), and the union of the triangles and faces so joined
 /// (face `f` is element `tris.len() + f`). An edge shared with a face has no neighbour
 /// triangle: a face is a cut, which makes no concave edge.
-fn neighbours(p: &Piece) -> (Vec<[u32; 3]>, super::piece::UnionFind) {
+fn neighbours(p: &Piece) -> (Vec<[u32; 3]>, UnionFind) {
     let n = p.tris.len();
     let mut nbr = vec![[NO_NEIGHBOUR; 3]; n];
     let mut open: FastMap<u64, (u32, u8)> = FastMap::default();
     open.reserve(p.edge_count() / 2 + 1);
-    let mut uf = super::piece::UnionFind::new(n + p.faces.len());
+    let mut uf = UnionFind::new(n + p.faces.len());
     // A face's edges carry slot 3, which names no triangle edge.
     for (t, k, a, b) in p.edges() {
         if let Some((u, j)) = open.remove(&(u64::from(b) << 32 | u64::from(a))) {

@@ -8,15 +8,14 @@ use glam::DVec3;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
-use super::convex::{TET_FACES, tet_volume};
-use super::inside::InsideTester;
-use super::massprops::mass_properties;
-use super::params::{FractureError, Placement};
-use super::piece::{Piece, UnionFind};
-use super::seeds::InsideSampler;
-use super::types::{Bond, Fragment};
 use crate::TriMesh;
 use crate::delaunay::{NO_NEIGHBOR, Tetrahedralization, tetrahedralize};
+use crate::fracture::kernel::Piece;
+use crate::fracture::kernel::convex::{TET_FACES, tet_volume};
+use crate::fracture::seeds::inside::{InsideSampler, InsideTester};
+use crate::fracture::{Bond, FractureError, Fragment, Placement};
+use crate::mesh::mass_properties;
+use crate::util::UnionFind;
 
 /// A tetrahedron (or group) below this fraction of the object's volume is a sliver.
 pub const SLIVER_VOLUME_FRACTION: f64 = 1e-4;
@@ -36,7 +35,7 @@ pub(crate) struct TetraOptions {
 /// then the centre if asked.
 pub(crate) fn tetra_points(mesh: &Piece, opt: &TetraOptions, rng: &mut ChaCha8Rng) -> Vec<DVec3> {
     let mut pts: Vec<DVec3> = mesh.pos.iter().step_by(opt.skip + 1).copied().collect();
-    let centre = super::massprops::mass_properties(&mesh.pos, &mesh.tris).1;
+    let centre = mass_properties(&mesh.pos, &mesh.tris).1;
     match opt.placement {
         Placement::Interior => {
             let sampler = InsideSampler::new(mesh);

@@ -1,0 +1,19 @@
+//! The cutting kernel: the working solid ([`Piece`]), oriented planes, exact clipping
+//! with capping (caps kept as polygons, [`Face`], until a cell is done), cap
+//! triangulation, and the convex decomposition for collision pieces.
+
+pub(crate) mod cap;
+pub(crate) mod clip;
+pub(crate) mod convex;
+mod face;
+mod piece;
+mod plane;
+
+#[cfg(test)]
+mod face_tests;
+#[cfg(test)]
+pub(crate) mod fast_path_tests;
+
+pub(crate) use face::Face;
+pub(crate) use piece::{Piece, SURFACE, mesh_scale};
+pub(crate) use plane::Plane;

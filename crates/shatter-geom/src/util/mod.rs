@@ -1,0 +1,10 @@
+//! Small shared pieces with no geometry of their own: disjoint sets, fast hashing of
+//! integer keys, bounds of point sets. A leaf: it uses nothing else of the crate.
+
+mod bounds;
+mod fast_hash;
+mod union_find;
+
+pub(crate) use bounds::bounds;
+pub(crate) use fast_hash::{FastMap, FastSet};
+pub use union_find::UnionFind;
