@@ -4,6 +4,8 @@
 //! This crate knows no physics and no rendering. All coordinates are `f64`
 //! ([`glam::DVec3`]); every topological decision goes through exact predicates.
 
+#![cfg_attr(test, allow(clippy::unwrap_used))]
+
 pub mod delaunay;
 pub mod fracture;
 pub mod io;
