@@ -1,8 +1,8 @@
 //! The command line's error type and exit codes.
 //!
 //! Exit codes: `0` success, `1` internal failure (a bug or an I/O failure that is not the
-//! user's fault), `2` bad input (a bad flag, file, value or mesh). clap's own usage errors
-//! also exit with `2`.
+//! user's fault), `2` bad input (a bad flag, file, value or mesh, or a request too big for
+//! the machine), `130` interrupted by Ctrl-C. clap's own usage errors also exit with `2`.
 
 use std::fmt;
 
@@ -10,6 +10,18 @@ use std::fmt;
 pub const EXIT_INPUT: u8 = 2;
 /// Exit code for an internal failure.
 pub const EXIT_INTERNAL: u8 = 1;
+/// Exit code when Ctrl-C stopped the command (128 + SIGINT, as shells report it).
+pub const EXIT_INTERRUPTED: u8 = 130;
+
+/// What an interrupted command says.
+pub const INTERRUPTED_MESSAGE: &str =
+    "interrupted (Ctrl-C): stopped before the end; no output file was written";
+
+impl From<shatter_geom::progress::Cancelled> for CliError {
+    fn from(_: shatter_geom::progress::Cancelled) -> Self {
+        Self::Interrupted
+    }
+}
 
 /// A failed command: what went wrong and whose fault it was.
 #[derive(Debug)]
@@ -18,6 +30,8 @@ pub enum CliError {
     Input(anyhow::Error),
     /// Something failed that the user could not prevent (exit code 1).
     Internal(anyhow::Error),
+    /// Ctrl-C stopped the command before it finished; no output was written (exit 130).
+    Interrupted,
 }
 
 impl CliError {
@@ -36,6 +50,7 @@ impl CliError {
         match self {
             Self::Input(_) => EXIT_INPUT,
             Self::Internal(_) => EXIT_INTERNAL,
+            Self::Interrupted => EXIT_INTERRUPTED,
         }
     }
 }
@@ -45,6 +60,7 @@ impl fmt::Display for CliError {
         // `{:#}` prints the whole context chain on one line: "outer: inner: root".
         match self {
             Self::Input(e) | Self::Internal(e) => write!(f, "{e:#}"),
+            Self::Interrupted => f.write_str(INTERRUPTED_MESSAGE),
         }
     }
 }
@@ -79,6 +95,7 @@ mod tests {
     fn input_errors_exit_2_and_internal_errors_exit_1() {
         assert_eq!(CliError::input("bad").exit_code(), 2);
         assert_eq!(CliError::internal("bug").exit_code(), 1);
+        assert_eq!(CliError::Interrupted.exit_code(), 130);
     }
 
     #[test]

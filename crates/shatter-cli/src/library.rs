@@ -3,6 +3,7 @@
 
 use std::path::Path;
 
+use shatter_geom::progress::Progress;
 use shatter_geom::fracture::{Fracture, FractureParams, Method, Pattern, Placement};
 use shatter_geom::io::{self, ExportObject};
 use shatter_geom::sampling;
@@ -13,6 +14,7 @@ use crate::commands::fracture::{
     FractureConfig, MethodConfig, PatternArg, PlacementArg, VoronoiSeeds,
 };
 use crate::error::CliError;
+use crate::output;
 
 /// `n` random points from `distribution`, reproducible from `seed`.
 pub fn random_points(
@@ -69,12 +71,17 @@ pub fn load_mesh(path: &Path) -> Result<TriMesh, CliError> {
 }
 
 /// Writes one mesh (no interior faces).
-pub fn write_mesh(path: &Path, format: MeshFormat, mesh: &TriMesh) -> Result<(), CliError> {
+pub fn write_mesh(
+    path: &Path,
+    format: MeshFormat,
+    mesh: &TriMesh,
+    progress: &Progress,
+) -> Result<(), CliError> {
     let name = path
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "mesh".to_string());
-    save(path, format, &[ExportObject::new(&name, mesh)])
+    save(path, format, &[ExportObject::new(&name, mesh)], progress)
 }
 
 /// Writes a fracture: one object (OBJ `o fragment_i`) or node (GLB) per fragment, cut
@@ -83,6 +90,7 @@ pub fn write_fracture(
     path: &Path,
     format: MeshFormat,
     fracture: &Fracture,
+    progress: &Progress,
 ) -> Result<(), CliError> {
     let names: Vec<String> = (0..fracture.fragments.len())
         .map(|i| format!("fragment_{i}"))
@@ -93,21 +101,56 @@ pub fn write_fracture(
         .zip(&names)
         .map(|(f, name)| ExportObject::new(name, &f.mesh).with_interior(&f.interior))
         .collect();
-    save(path, format, &objects)
+    save(path, format, &objects, progress)
 }
 
-fn save(path: &Path, format: MeshFormat, objects: &[ExportObject<'_>]) -> Result<(), CliError> {
-    let result = match format {
-        MeshFormat::Obj => io::save_obj(path, objects),
-        MeshFormat::Glb => io::save_glb(path, objects),
-    };
-    result.map_err(|e| match e {
+/// Writes the objects through temporary files renamed into place (an interrupted or
+/// failed write leaves no partial output). An OBJ's `.mtl` is written next to it, under
+/// the final name its `mtllib` line gives.
+fn save(
+    path: &Path,
+    format: MeshFormat,
+    objects: &[ExportObject<'_>],
+    progress: &Progress,
+) -> Result<(), CliError> {
+    let mapped = |e: io::MeshIoError| match e {
         // Failing to create or write the file: the user's path (checked up front, so
         // this is rare: a full disk, a race).
-        io::MeshIoError::Io { .. } => CliError::input(format!("cannot write: {e}")),
+        io::MeshIoError::Io { source, .. } => {
+            CliError::input(format!("{}: cannot write: {source}", path.display()))
+        }
         // Anything else means shatter produced an inconsistent mesh: a bug.
         other => CliError::internal(format!("{}: export failed: {other}", path.display())),
-    })
+    };
+    let create = |temp: &Path| {
+        std::fs::File::create(temp)
+            .map(std::io::BufWriter::new)
+            .map_err(|e| CliError::input(format!("{}: cannot write: {e}", path.display())))
+    };
+    match format {
+        MeshFormat::Obj => {
+            let mtl_path = path.with_extension("mtl");
+            let mtl_name = mtl_path
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "materials.mtl".into());
+            // The material file first: the OBJ, the output that matters, is renamed
+            // into place last.
+            output::write_file(&mtl_path, progress, |w| io::write_mtl(w))?;
+            output::via_temp_path(path, progress, |temp| {
+                let mut out = create(temp)?;
+                io::write_obj(&mut out, objects, Some(&mtl_name)).map_err(mapped)?;
+                std::io::Write::flush(&mut out)
+                    .map_err(|e| CliError::input(format!("{}: cannot write: {e}", path.display())))
+            })
+        }
+        MeshFormat::Glb => output::via_temp_path(path, progress, |temp| {
+            let mut out = create(temp)?;
+            io::write_glb(&mut out, objects).map_err(mapped)?;
+            std::io::Write::flush(&mut out)
+                .map_err(|e| CliError::input(format!("{}: cannot write: {e}", path.display())))
+        }),
+    }
 }
 
 /// Fractures `mesh` as `config` says; returns the fracture and its warnings (an inward

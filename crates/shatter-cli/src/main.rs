@@ -1,14 +1,19 @@
 //! The `shatter` command line.
 //!
 //! Every command lives in its own module under `commands/` with a clap `Args` struct and
-//! a `run(&Args) -> Result<(), CliError>` function. Exit codes: 0 success, 1 internal
-//! failure, 2 bad input (see [`error`]).
+//! a `run(&Args, &Context) -> Result<(), CliError>` function. Exit codes: 0 success, 1
+//! internal failure, 2 bad input or a request too big for the machine, 130 Ctrl-C (see
+//! [`error`]).
 
 mod args;
+mod bar;
 mod commands;
+mod context;
 mod error;
+mod interrupt;
 mod library;
 mod memory;
+mod output;
 mod points_file;
 
 use std::process::ExitCode;
@@ -24,6 +29,7 @@ use crate::commands::{
     bench_creation, bench_delaunay, bench_fracture, bench_step, fracture, shape, simulate, study,
     tetrahedralize,
 };
+use crate::context::Context;
 use crate::error::CliError;
 
 /// shatter: fracture simulation — tetrahedralize, fracture, simulate, benchmark.
@@ -32,6 +38,10 @@ use crate::error::CliError;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Run requests that the estimate says need more memory than this machine has or
+    /// more than an hour (see docs/cli.md, "Resource limits").
+    #[arg(long, global = true)]
+    no_limits: bool,
 }
 
 /// The commands, one variant each.
@@ -65,20 +75,26 @@ enum BenchCommand {
     Creation(bench_creation::BenchCreationArgs),
 }
 
-fn run(command: &Command) -> Result<(), CliError> {
+fn run(command: &Command, ctx: &Context) -> Result<(), CliError> {
     match command {
-        Command::Tetrahedralize(a) => tetrahedralize::run(a),
-        Command::Shape(a) => shape::run(a),
-        Command::Fracture(a) => fracture::run(a),
-        // Every simulate / bench step failure is a bad scene or flag: exit code 2.
-        Command::Simulate(a) => simulate::run(a).map(|_| ()).map_err(CliError::Input),
-        Command::Bench(BenchCommand::Delaunay(a)) => bench_delaunay::run(a),
-        Command::Bench(BenchCommand::Fracture(a)) => bench_fracture::run(a),
-        Command::Bench(BenchCommand::Step(a)) => {
-            bench_step::run(a).map(|_| ()).map_err(CliError::Input)
+        Command::Tetrahedralize(a) => tetrahedralize::run(a, ctx),
+        Command::Shape(a) => shape::run(a, ctx),
+        Command::Fracture(a) => fracture::run(a, ctx),
+        Command::Simulate(a) => simulate::run(a, ctx).map(|_| ()),
+        Command::Bench(BenchCommand::Delaunay(a)) => {
+            // Each size is checked before any is measured (bench_delaunay.rs measures; the
+            // processes it starts per size were checked here).
+            if !a.in_process {
+                for &n in &a.sizes {
+                    tetrahedralize::check_points(ctx, &format!("--sizes {n}"), n as u64)?;
+                }
+            }
+            bench_delaunay::run(a)
         }
-        Command::Bench(BenchCommand::Creation(a)) => bench_creation::run(a),
-        Command::Study(a) => study::run(a),
+        Command::Bench(BenchCommand::Fracture(a)) => bench_fracture::run(a, ctx),
+        Command::Bench(BenchCommand::Step(a)) => bench_step::run(a, ctx).map(|_| ()),
+        Command::Bench(BenchCommand::Creation(a)) => bench_creation::run(a, ctx),
+        Command::Study(a) => study::run(a, ctx),
     }
 }
 
@@ -90,9 +106,17 @@ fn main() -> ExitCode {
     std::panic::set_hook(Box::new(|info| {
         eprintln!("error: internal error (a bug in shatter, please report it): {info}");
     }));
-    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| run(&cli.command))) {
+    let ctx = Context::new(cli.no_limits);
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| run(&cli.command, &ctx))) {
         Ok(Ok(())) => ExitCode::SUCCESS,
         Ok(Err(e)) => {
+            // After Ctrl-C, whatever failed failed because of it (a child process that
+            // was interrupted too, a write cut short).
+            let e = if ctx.progress.is_cancelled() {
+                CliError::Interrupted
+            } else {
+                e
+            };
             eprintln!("error: {e}");
             ExitCode::from(e.exit_code())
         }

@@ -222,6 +222,69 @@ mod tests {
         ));
     }
 
+    /// Checks what the reader said about `text`: an error on a line of the text, or
+    /// points that are all finite, one per non-blank, non-comment line.
+    fn check_parse(text: &str) {
+        match parse_points(text) {
+            Ok(points) => {
+                assert!(points.iter().all(|p| p.is_finite()));
+                let lines = text
+                    .lines()
+                    .filter(|l| !l.split('#').next().unwrap_or("").trim().is_empty())
+                    .count();
+                assert_eq!(points.len(), lines);
+            }
+            Err((line, problem)) => {
+                assert!(line >= 1 && line <= text.lines().count(), "line {line}");
+                assert!(!problem.to_string().is_empty());
+            }
+        }
+    }
+
+    const VALID: &str = "# a tetrahedron and its centre\n0 0 0\n1 0 0\n0 1 0   # c\n0 0 1\n\n0.25 0.25 0.25\n";
+    const TOKENS: [&str; 16] = [
+        "1e400", "-1e-400", "nan", "inf", "0x10", "1,5", "#", "\n", "\t", " ", "\r\n", "1e",
+        "+", "-0", "١", "\u{feff}",
+    ];
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig {
+            cases: 1024, failure_persistence: None, ..Default::default()
+        })]
+
+        #[test]
+        fn random_bytes_never_panic(bytes in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..400)) {
+            check_parse(&String::from_utf8_lossy(&bytes));
+            // Not UTF-8 at all: the file reader refuses it with a message.
+            let dir = tempfile::tempdir().unwrap();
+            let path = dir.path().join("p.xyz");
+            std::fs::write(&path, &bytes).unwrap();
+            if let Err(e) = read_points_file(&path) {
+                assert!(e.to_string().starts_with(&path.display().to_string()));
+            }
+        }
+
+        #[test]
+        fn mutated_valid_files_never_panic(
+            edits in proptest::collection::vec(
+                (proptest::prelude::any::<usize>(), 0..TOKENS.len(), proptest::prelude::any::<bool>()),
+                1..5,
+            ),
+        ) {
+            let mut text: Vec<char> = VALID.chars().collect();
+            for (at, token, replace) in edits {
+                let at = at % (text.len() + 1);
+                if replace && at < text.len() {
+                    text.remove(at);
+                }
+                for (k, c) in TOKENS[token].chars().enumerate() {
+                    text.insert(at + k, c);
+                }
+            }
+            check_parse(&text.into_iter().collect::<String>());
+        }
+    }
+
     #[test]
     fn format_then_parse_round_trips() {
         let points = vec![DVec3::new(0.1, -2.5, 1e-9), DVec3::new(1e6, 3.0, -0.0)];

@@ -6,11 +6,13 @@
 
 #![cfg_attr(test, allow(clippy::unwrap_used))]
 
+pub mod budget;
 pub mod delaunay;
 pub mod fracture;
 pub mod io;
 pub mod mesh;
 pub mod model;
+pub mod progress;
 pub mod sampling;
 pub mod shapes;
 pub mod util;

@@ -8,22 +8,25 @@
 //! its own columns. Writes `creation.csv`, and plots as PNG and SVG: one per placement
 //! (one line per model, as the thesis drew them) and one per model (both placements).
 
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use shatter_geom::DVec3;
+use shatter_geom::budget::{Estimate, format_count};
 use shatter_geom::fracture::Fracture;
+use shatter_geom::progress::Progress;
 use shatter_report::plot::{LinePlot, Series};
 use shatter_report::table::{Cell, CsvTable};
 
 use crate::args::ShapeName;
 use crate::commands::fracture::{
-    FractureConfig, MeshSource, MethodConfig, PlacementArg, fracture_timed, load_source,
+    FractureConfig, MeshSource, MethodConfig, PlacementArg, fracture_estimate, fracture_timed,
+    load_source,
 };
+use crate::context::Context;
 use crate::error::{CliError, ResultExt};
+use crate::output;
 
 /// Arguments of `shatter bench creation`.
 #[derive(Debug, Args)]
@@ -78,6 +81,18 @@ impl CreationConfig {
         if args.runs == 0 {
             return Err(CliError::input("--runs must be at least 1"));
         }
+        // The list of counts is built below: refuse a list that alone would not fit.
+        let cases = args.max_points / args.step + 1;
+        if cases > MAX_COUNTS {
+            return Err(CliError::input(format!(
+                "--max-points {} --step {}: {} numbers of random points; at most {} \
+                 (a larger --step makes fewer)",
+                args.max_points,
+                args.step,
+                format_count(cases as u64),
+                format_count(MAX_COUNTS as u64)
+            )));
+        }
         let models = parse_list(&args.models, "--models", "model")?;
         let placements = parse_list(&args.placements, "--placements", "placement")?;
         Ok(Self {
@@ -91,6 +106,9 @@ impl CreationConfig {
         })
     }
 }
+
+/// The most numbers of random points one run measures.
+const MAX_COUNTS: usize = 1_000_000;
 
 /// Parses a comma-separated list of clap value names, refusing unknown and repeated
 /// names and an empty list.
@@ -326,16 +344,25 @@ fn write_plot(
     stem: &str,
     series: &[Series],
     title: &str,
+    progress: &Progress,
 ) -> Result<[PathBuf; 2], CliError> {
     let plot = LinePlot::new(series, title, "random points", "time to create [ms]");
     let png = dir.join(format!("{stem}.png"));
     let svg = dir.join(format!("{stem}.svg"));
-    plot.write_png(&png).internal_err("writing a plot")?;
-    plot.write_svg(&svg).internal_err("writing a plot")?;
+    output::via_temp_path(&png, progress, |temp| {
+        plot.write_png(temp).internal_err("writing a plot")
+    })?;
+    output::via_temp_path(&svg, progress, |temp| {
+        plot.write_svg(temp).internal_err("writing a plot")
+    })?;
     Ok([png, svg])
 }
 
-fn plots(config: &CreationConfig, rows: &[Row]) -> Result<Vec<PathBuf>, CliError> {
+fn plots(
+    config: &CreationConfig,
+    rows: &[Row],
+    progress: &Progress,
+) -> Result<Vec<PathBuf>, CliError> {
     let mut written = Vec::new();
     let select = |m: ShapeName, p: PlacementArg| -> Vec<&Row> {
         rows.iter()
@@ -367,6 +394,7 @@ fn plots(config: &CreationConfig, rows: &[Row]) -> Result<Vec<PathBuf>, CliError
                 &format!("{prefix}_{}", placement_name(p)),
                 &lines,
                 &title,
+                progress,
             )?);
         }
     }
@@ -385,6 +413,7 @@ fn plots(config: &CreationConfig, rows: &[Row]) -> Result<Vec<PathBuf>, CliError
             &format!("creation_{m}"),
             &lines,
             &title,
+            progress,
         )?);
     }
     Ok(written)
@@ -427,26 +456,46 @@ fn build_bodies_ms(fracture: Fracture) -> Result<f64, CliError> {
     Ok(start.elapsed().as_secs_f64() * 1e3)
 }
 
-fn progress_bar(len: u64) -> ProgressBar {
-    let target = if std::io::stderr().is_terminal() {
-        ProgressDrawTarget::stderr()
-    } else {
-        ProgressDrawTarget::hidden()
-    };
-    let bar = ProgressBar::with_draw_target(Some(len), target);
-    if let Ok(style) =
-        ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} {msg} (eta {eta})")
-    {
-        bar.set_style(style.progress_chars("=> "));
+/// The estimate of the whole benchmark (every case, the warm-ups and every run); its
+/// memory is the largest case's.
+fn creation_estimate(
+    config: &CreationConfig,
+    meshes: &[(ShapeName, shatter_geom::TriMesh)],
+) -> Estimate {
+    let mut total = Estimate::default();
+    for (model, mesh) in meshes {
+        for &placement in &config.placements {
+            let runs = |count: usize, n: f64| {
+                let (_, e) = fracture_estimate(mesh, &fracture_config(*model, placement, count, 0));
+                let fragments = (mesh.positions.len() + count) as f64
+                    * shatter_geom::budget::TETRAHEDRA_PER_POINT;
+                let bodies = if config.with_bodies {
+                    shatter_sim::scene::budget::bodies_estimate(fragments)
+                } else {
+                    Estimate::default()
+                };
+                let one = e + bodies;
+                Estimate {
+                    bytes: one.bytes,
+                    seconds: one.seconds * n,
+                }
+            };
+            let mut add = |e: Estimate| {
+                total.bytes = total.bytes.max(e.bytes);
+                total.seconds += e.seconds;
+            };
+            add(runs(config.counts[0], 1.0));
+            for &count in &config.counts {
+                add(runs(count, config.runs as f64));
+            }
+        }
     }
-    bar
+    total
 }
 
 /// Runs `shatter bench creation`.
-pub fn run(args: &BenchCreationArgs) -> Result<(), CliError> {
+pub fn run(args: &BenchCreationArgs, ctx: &Context) -> Result<(), CliError> {
     let config = CreationConfig::from_args(args)?;
-    std::fs::create_dir_all(&config.out)
-        .input_err(format!("cannot create '{}'", config.out.display()))?;
 
     let mut meshes = Vec::new();
     for &model in &config.models {
@@ -454,12 +503,24 @@ pub fn run(args: &BenchCreationArgs) -> Result<(), CliError> {
         let (mesh, _) = load_source(&fracture_config)?;
         meshes.push((model, mesh));
     }
-
     let cases = config.models.len() * config.placements.len() * config.counts.len();
-    let bar = progress_bar(cases as u64);
+    ctx.check(
+        &format!(
+            "{} cases of {} runs (up to --max-points {} random points)",
+            format_count(cases as u64),
+            config.runs,
+            args.max_points
+        ),
+        &creation_estimate(&config, &meshes),
+    )?;
+    std::fs::create_dir_all(&config.out)
+        .input_err(format!("cannot create '{}'", config.out.display()))?;
+
+    let bar = ctx.bar(cases as u64, false);
     let rows = sweep(
         &config,
         |model, placement, count, seed| {
+            ctx.progress.check()?;
             let mesh = meshes
                 .iter()
                 .find(|(m, _)| *m == model)
@@ -471,18 +532,18 @@ pub fn run(args: &BenchCreationArgs) -> Result<(), CliError> {
                 config.with_bodies,
             )
         },
-        |case| {
-            bar.set_message(case.to_string());
-            bar.inc(1);
-        },
+        |case| bar.tick(case),
     )?;
-    bar.finish_and_clear();
+    drop(bar);
 
     let csv = config.out.join("creation.csv");
-    table(&rows)?
-        .write(&csv)
-        .input_err(format!("cannot write '{}'", csv.display()))?;
-    let written = plots(&config, &rows)?;
+    let table = table(&rows)?;
+    output::via_temp_path(&csv, &ctx.progress, |temp| {
+        table
+            .write(temp)
+            .input_err(format!("cannot write '{}'", csv.display()))
+    })?;
+    let written = plots(&config, &rows, &ctx.progress)?;
 
     print_summary(&config, &rows);
     println!("wrote {}", csv.display());
@@ -690,7 +751,7 @@ mod tests {
             |_| {},
         )
         .unwrap();
-        let written = plots(&config, &rows).unwrap();
+        let written = plots(&config, &rows, &Progress::none()).unwrap();
         // fracture + total per placement, and one per model; PNG and SVG each.
         assert_eq!(written.len(), 2 * (2 * 2 + 2));
         for name in [

@@ -8,12 +8,14 @@
 use clap::Args;
 use serde::Serialize;
 use shatter_geom::DVec3;
+use shatter_geom::budget::{Estimate, format_count};
 
 use crate::args::ShapeName;
 use crate::commands::fracture::{
     FractureConfig, MeshSource, MethodConfig, PatternArg, PlacementArg, VoronoiSeeds,
-    fracture_timed, load_source,
+    fracture_estimate, fracture_timed, load_source,
 };
+use crate::context::Context;
 use crate::error::{CliError, ResultExt};
 
 /// Arguments of `shatter bench fracture`.
@@ -125,7 +127,30 @@ struct Report {
 }
 
 /// Runs `shatter bench fracture`.
-pub fn run(args: &BenchFractureArgs) -> Result<(), CliError> {
+pub fn run(args: &BenchFractureArgs, ctx: &Context) -> Result<(), CliError> {
+    let config_of = |case: &Case| FractureConfig {
+        source: MeshSource::Shape(case.shape),
+        scale: DVec3::ONE,
+        method: case.method.clone(),
+        seed: args.seed,
+    };
+    let mut total = Estimate::default();
+    for case in cases() {
+        let config = config_of(&case);
+        let (mesh, _) = load_source(&config)?;
+        let (_, e) = fracture_estimate(&mesh, &config);
+        total.bytes = total.bytes.max(e.bytes);
+        total.seconds += e.seconds * (f64::from(args.runs) + 1.0);
+    }
+    ctx.check(
+        &format!(
+            "--runs {}: {} fracture runs",
+            args.runs,
+            format_count((u64::from(args.runs) + 1) * cases().len() as u64)
+        ),
+        &total,
+    )?;
+    let bar = ctx.bar(cases().len() as u64, args.json);
     if !args.json {
         println!(
             "{:<26} {:>9} {:>7} {:>10} {:>10} {:>10}",
@@ -134,19 +159,17 @@ pub fn run(args: &BenchFractureArgs) -> Result<(), CliError> {
     }
     let mut rows = Vec::new();
     for case in cases() {
-        let config = FractureConfig {
-            source: MeshSource::Shape(case.shape),
-            scale: DVec3::ONE,
-            method: case.method,
-            seed: args.seed,
-        };
+        let config = config_of(&case);
         let (mesh, _) = load_source(&config)?;
+        ctx.progress.check()?;
         let (warm, _, _) = fracture_timed(&mesh, &config)?;
         let mut times = Vec::with_capacity(args.runs as usize);
         for _ in 0..args.runs {
+            ctx.progress.check()?;
             let (_, _, ms) = fracture_timed(&mesh, &config)?;
             times.push(ms);
         }
+        bar.tick(case.name);
         let row = Row {
             case: case.name,
             shape: case.shape.as_str(),
@@ -158,13 +181,14 @@ pub fn run(args: &BenchFractureArgs) -> Result<(), CliError> {
             max_ms: times.iter().copied().fold(0.0, f64::max),
         };
         if !args.json {
-            println!(
+            bar.println(format!(
                 "{:<26} {:>9} {:>7} {:>10.3} {:>10.3} {:>10.3}",
                 row.case, row.fragments, row.bonds, row.mean_ms, row.min_ms, row.max_ms
-            );
+            ));
         }
         rows.push(row);
     }
+    drop(bar);
     if args.json {
         let report = Report {
             seed: args.seed,

@@ -3,8 +3,17 @@
 //! model.
 
 use clap::Args;
+use shatter_geom::budget::format_count;
+use shatter_geom::progress::Progress;
 use shatter_sim::BondModel;
+use shatter_sim::scene::budget::{bodies_estimate, run_estimate};
 use shatter_sim::testing::wall_benchmark_world;
+
+use crate::context::Context;
+use crate::error::{CliError, ResultExt};
+
+/// Fragments of the benchmark wall.
+const WALL_FRAGMENTS: f64 = 2000.0;
 
 /// Arguments of `shatter bench step`.
 #[derive(Debug, Args)]
@@ -46,34 +55,60 @@ struct Run {
     broken: usize,
 }
 
-fn measure(model: BondModel, seconds: f64) -> Run {
+/// Steps of `seconds` at the wall's step.
+fn steps_of(seconds: f64) -> u64 {
+    let dt = shatter_sim::WorldSettings::default().dt;
+    (seconds / f64::from(dt)).round().max(1.0) as u64
+}
+
+fn measure(model: BondModel, seconds: f64, progress: &Progress) -> Result<Run, CliError> {
+    progress.check()?;
     let mut world = wall_benchmark_world(model);
     let fragments = world.stats().fragments;
-    let steps = (seconds / world.settings().dt as f64).round().max(1.0) as u64;
+    let steps = steps_of(seconds);
     world.start();
     let (mut total, mut max) = (0.0f64, 0.0f64);
-    for _ in 0..steps {
-        world.step();
+    world.run_steps(steps, progress, |world, _| {
         let ms = world.stats().last_step_ms;
         total += ms;
         max = max.max(ms);
-    }
-    Run {
+        Ok::<(), CliError>(())
+    })?;
+    Ok(Run {
         fragments,
         steps,
         mean_ms: total / steps as f64,
         max_ms: max,
         broken: world.stats().bonds_broken,
-    }
+    })
 }
 
 /// Runs `shatter bench step`.
-pub fn run(args: &BenchStepArgs) -> anyhow::Result<BenchStepReport> {
+pub fn run(args: &BenchStepArgs, ctx: &Context) -> Result<BenchStepReport, CliError> {
     if !(args.seconds.is_finite() && args.seconds > 0.0) {
-        anyhow::bail!("--seconds must be positive, got {}", args.seconds);
+        return Err(CliError::input(format!(
+            "--seconds must be positive, got {}",
+            args.seconds
+        )));
     }
-    let joints = measure(BondModel::Joints, args.seconds);
-    let clusters = measure(BondModel::Clusters, args.seconds);
+    let steps = steps_of(args.seconds);
+    let one = bodies_estimate(WALL_FRAGMENTS) + run_estimate(WALL_FRAGMENTS, steps);
+    let estimate = shatter_geom::budget::Estimate {
+        bytes: one.bytes,
+        seconds: 2.0 * one.seconds,
+    };
+    ctx.check(
+        &format!(
+            "--seconds {}: 2 x {} steps of the 2,000-brick wall",
+            args.seconds,
+            format_count(steps)
+        ),
+        &estimate,
+    )?;
+    let bar = ctx.follow("bench step", &estimate, args.json);
+    let joints = measure(BondModel::Joints, args.seconds, &ctx.progress)?;
+    let clusters = measure(BondModel::Clusters, args.seconds, &ctx.progress)?;
+    drop(bar);
     let report = BenchStepReport {
         fragments: clusters.fragments,
         steps: clusters.steps,
@@ -85,7 +120,8 @@ pub fn run(args: &BenchStepArgs) -> anyhow::Result<BenchStepReport> {
         clusters_bonds_broken: clusters.broken,
     };
     if args.json {
-        println!("{}", serde_json::to_string(&report)?);
+        let json = serde_json::to_string(&report).internal_err("cannot encode the report")?;
+        println!("{json}");
     } else {
         println!(
             "wall of {} fragments, {} steps per model\n  joints:   {:.3} ms/step (max {:.3}), {} bonds broken\n  clusters: {:.3} ms/step (max {:.3}), {} bonds broken\n  clusters are {:.1}x cheaper",

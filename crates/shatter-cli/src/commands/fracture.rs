@@ -5,13 +5,16 @@ use std::time::Instant;
 
 use clap::{ArgGroup, Args, ValueEnum};
 use serde::Serialize;
+use shatter_geom::budget::{Estimate, format_count};
 use shatter_geom::fracture::Fracture;
 use shatter_geom::{DVec3, TriMesh};
 
 use crate::args::{MeshFormat, ShapeName, check_writable, parse_vec3, validate_scale};
+use crate::commands::tetrahedralize::{EstimateReport, check_points_file};
+use crate::context::Context;
 use crate::error::{CliError, ResultExt};
-use crate::library;
 use crate::points_file::read_points_file;
+use crate::{library, memory};
 
 /// Fracture method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -203,7 +206,10 @@ impl MethodArg {
 
 impl FractureArgs {
     /// Validates the arguments into a configuration and the optional output.
-    fn validate(&self) -> Result<(FractureConfig, Option<(PathBuf, MeshFormat)>), CliError> {
+    fn validate(
+        &self,
+        ctx: &Context,
+    ) -> Result<(FractureConfig, Option<(PathBuf, MeshFormat)>), CliError> {
         let source = match (&self.mesh, self.shape) {
             (Some(path), None) => MeshSource::File(path.clone()),
             (None, Some(shape)) => MeshSource::Shape(shape),
@@ -264,6 +270,7 @@ impl FractureArgs {
             MethodArg::Voronoi => {
                 let seeds = match &self.seeds_file {
                     Some(path) => {
+                        check_points_file(ctx, "--seeds-file", path)?;
                         VoronoiSeeds::Points(read_points_file(path).map_err(CliError::input)?)
                     }
                     None => VoronoiSeeds::Pattern {
@@ -320,6 +327,12 @@ pub struct FractureReport {
     pub millis: f64,
     /// Warnings (also printed on stderr).
     pub warnings: Vec<String>,
+    /// What the resource check estimated before the fracture.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub estimate: Option<EstimateReport>,
+    /// The process's peak resident set at the end (Linux only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub peak_rss_bytes: Option<u64>,
 }
 
 impl FractureReport {
@@ -340,8 +353,69 @@ impl FractureReport {
                 .sum(),
             millis,
             warnings,
+            estimate: None,
+            peak_rss_bytes: None,
         }
     }
+}
+
+/// The estimate of fracturing `mesh` as `config` says, and what it is called in a
+/// refusal ("--random-vertices 4,000,000,000: a tetra fracture of 4,000,000,958 points").
+pub fn fracture_estimate(mesh: &TriMesh, config: &FractureConfig) -> (String, Estimate) {
+    let triangles = mesh.triangles.len() as u64;
+    match &config.method {
+        MethodConfig::Tetra {
+            random_vertices,
+            skip,
+            center,
+            ..
+        } => {
+            let surface = (mesh.positions.len() as u64).div_ceil(*skip as u64 + 1);
+            let points = surface
+                .saturating_add(*random_vertices as u64)
+                .saturating_add(u64::from(*center));
+            (
+                format!(
+                    "--random-vertices {random_vertices}: a tetra fracture of {} points",
+                    format_count(points)
+                ),
+                Estimate::tetra_fracture(points),
+            )
+        }
+        MethodConfig::Voronoi { seeds, .. } => {
+            let (flag, cells) = match seeds {
+                VoronoiSeeds::Pattern { count, .. } => (format!("--pieces {count}"), *count),
+                VoronoiSeeds::Points(p) => ("--seeds-file".to_string(), p.len()),
+            };
+            (
+                format!(
+                    "{flag}: {} Voronoi cells of a {}-triangle mesh",
+                    format_count(cells as u64),
+                    format_count(triangles)
+                ),
+                Estimate::voronoi_fracture(cells as u64, triangles),
+            )
+        }
+        MethodConfig::Slice { planes } => (
+            format!(
+                "--pieces {planes}: {} slice planes (up to {:.3e} pieces)",
+                format_count(*planes as u64),
+                shatter_geom::budget::slice_pieces_at_most(*planes as u64)
+            ),
+            Estimate::slice_fracture(*planes as u64, triangles),
+        ),
+    }
+}
+
+/// Refuses a fracture whose estimate does not fit the limits; returns the estimate.
+pub fn check_fracture(
+    ctx: &Context,
+    mesh: &TriMesh,
+    config: &FractureConfig,
+) -> Result<Estimate, CliError> {
+    let (what, estimate) = fracture_estimate(mesh, config);
+    ctx.check(&what, &estimate)?;
+    Ok(estimate)
 }
 
 /// Loads (and scales) the mesh a configuration names and checks that it is a valid
@@ -370,18 +444,25 @@ pub fn fracture_timed(
 }
 
 /// Runs `shatter fracture`.
-pub fn run(args: &FractureArgs) -> Result<(), CliError> {
-    let (config, out) = args.validate()?;
+pub fn run(args: &FractureArgs, ctx: &Context) -> Result<(), CliError> {
+    let (config, out) = args.validate(ctx)?;
     let (mesh, mut warnings) = load_source(&config)?;
+    let estimate = check_fracture(ctx, &mesh, &config)?;
+    ctx.progress.check()?;
+    let bar = ctx.follow(&format!("fracture ({})", config.describe()), &estimate, args.json);
     let (fracture, more_warnings, millis) = fracture_timed(&mesh, &config)?;
+    drop(bar);
+    ctx.progress.check()?;
     warnings.extend(more_warnings);
     for w in &warnings {
         eprintln!("warning: {w}");
     }
     if let Some((path, format)) = &out {
-        library::write_fracture(path, *format, &fracture)?;
+        library::write_fracture(path, *format, &fracture, &ctx.progress)?;
     }
-    let report = FractureReport::new(&mesh, &fracture, millis, warnings);
+    let mut report = FractureReport::new(&mesh, &fracture, millis, warnings);
+    report.estimate = Some(estimate.into());
+    report.peak_rss_bytes = memory::peak_rss_bytes();
     if args.json {
         println!(
             "{}",

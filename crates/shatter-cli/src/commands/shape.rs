@@ -6,6 +6,7 @@ use clap::Args;
 use shatter_geom::DVec3;
 
 use crate::args::{MeshFormat, ShapeName, check_writable, parse_vec3, validate_scale};
+use crate::context::Context;
 use crate::error::CliError;
 use crate::library;
 
@@ -45,10 +46,10 @@ impl ShapeArgs {
 }
 
 /// Runs `shatter shape`.
-pub fn run(args: &ShapeArgs) -> Result<(), CliError> {
+pub fn run(args: &ShapeArgs, ctx: &Context) -> Result<(), CliError> {
     let config = args.validate()?;
     let mesh = library::scaled(library::builtin_shape(config.name)?, config.scale);
-    library::write_mesh(&config.out, config.format, &mesh)?;
+    library::write_mesh(&config.out, config.format, &mesh, &ctx.progress)?;
     println!(
         "wrote {} ({} vertices, {} triangles, volume {:.6}) to {}",
         config.name,

@@ -6,7 +6,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use anyhow::Context;
+use anyhow::Context as _;
 use clap::{Args, ValueEnum};
 use shatter_geom::TriMesh;
 use shatter_report::export::{FragmentMesh, Pose as KeyPose};
@@ -15,6 +15,9 @@ use shatter_sim::scene::Scene;
 use shatter_sim::{BondModel, ObjectId, Pose, ProjectileSpec, World};
 
 use crate::args::check_writable;
+use crate::context::Context;
+use crate::error::{CliError, ResultExt};
+use crate::output;
 
 /// Bond model on the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -187,31 +190,41 @@ fn same_file(a: &Path, b: &Path) -> bool {
 }
 
 /// Runs `shatter simulate`. Every error is the scene's or a flag's fault (bad input,
-/// exit code 2); output paths are checked before the scene is even loaded.
-pub fn run(args: &SimulateArgs) -> anyhow::Result<SimulateReport> {
-    let outputs = Outputs::from_args(args)?;
-    let scene = Scene::load(&args.scene).with_context(|| args.scene.display().to_string())?;
+/// exit code 2); output paths are checked before the scene is even loaded, and the
+/// scene's estimate before anything is built. Ctrl-C stops it between two steps
+/// (exit code 130) without writing any output.
+pub fn run(args: &SimulateArgs, ctx: &Context) -> Result<SimulateReport, CliError> {
+    let outputs = Outputs::from_args(args).map_err(CliError::Input)?;
+    if let Some(t) = args.seconds
+        && !(t.is_finite() && t >= 0.0)
+    {
+        return Err(CliError::input(format!(
+            "--seconds must be a non-negative number, got {t}"
+        )));
+    }
+    let scene_name = args.scene.display().to_string();
+    let scene = Scene::load(&args.scene)
+        .map_err(|e| CliError::input(format!("{scene_name}: {e}")))?;
+    let steps = scene.steps(args.steps, args.seconds);
+    let estimate = scene
+        .check_budget(steps, &ctx.limits)
+        .map_err(|e| ctx.refusal(&format!("{scene_name}: {e}")))?;
+    ctx.progress.check()?;
     let mut world = scene
         .build(args.bonds.map(BondModel::from))
-        .with_context(|| args.scene.display().to_string())?;
-    let steps = match (args.steps, args.seconds) {
-        (Some(n), _) => n,
-        (None, Some(t)) if t.is_finite() && t >= 0.0 => {
-            (t / world.settings().dt as f64).round() as u64
-        }
-        (None, Some(t)) => anyhow::bail!("--seconds must be a non-negative number, got {t}"),
-        (None, None) => (scene.seconds / world.settings().dt as f64).round() as u64,
-    };
+        .map_err(|e| CliError::input(format!("{scene_name}: {e}")))?;
+    ctx.progress.check()?;
     world.start();
     let mut run_export = outputs
         .export
         .as_ref()
         .map(|_| RunExport::new(&world, outputs.fps))
-        .transpose()?;
+        .transpose()
+        .map_err(CliError::Input)?;
     let mut stats_log = outputs.record.as_ref().map(|_| RunRecorder::new());
     let mut total_ms = 0.0;
-    for step in 0..steps {
-        world.step();
+    let bar = ctx.follow("simulating", &estimate.run, args.json);
+    world.run_steps(steps, &ctx.progress, |world, done| {
         let stats = world.stats();
         total_ms += stats.last_step_ms;
         if let Some(log) = &mut stats_log {
@@ -228,9 +241,13 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<SimulateReport> {
             });
         }
         if let Some(export) = &mut run_export {
-            export.observe(&world, step + 1 == steps)?;
+            export
+                .observe(world, done == steps)
+                .map_err(CliError::Input)?;
         }
-    }
+        Ok::<(), CliError>(())
+    })?;
+    drop(bar);
     let stats = world.stats();
     let mut report = SimulateReport {
         steps: stats.steps,
@@ -249,18 +266,24 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<SimulateReport> {
         record: None,
     };
     if let (Some(export), Some(path)) = (run_export, &outputs.export) {
-        report.export = Some(export.write(path)?);
+        report.export = Some(output::via_temp_path(path, &ctx.progress, |temp| {
+            export.write(temp, path).map_err(CliError::Input)
+        })?);
     }
     if let (Some(log), Some(path)) = (stats_log, &outputs.record) {
-        log.write_csv(path)
-            .with_context(|| format!("cannot write --record {}", path.display()))?;
+        output::via_temp_path(path, &ctx.progress, |temp| {
+            log.write_csv(temp)
+                .with_context(|| format!("cannot write --record {}", path.display()))
+                .map_err(CliError::Input)
+        })?;
         report.record = Some(RecordSummary {
             path: path.clone(),
             rows: log.stats().len(),
         });
     }
     if args.json {
-        println!("{}", serde_json::to_string(&report)?);
+        let json = serde_json::to_string(&report).internal_err("cannot encode the report")?;
+        println!("{json}");
     } else {
         println!(
             "steps {}  bodies {}  fragments {}  bonds {}/{} broken  {:.3} ms/step  diverged {}  digest {}",
@@ -389,10 +412,10 @@ impl RunExport {
         Ok(poses)
     }
 
-    /// Writes the GLB file.
-    fn write(self, path: &Path) -> anyhow::Result<ExportSummary> {
+    /// Writes the GLB file to `temp`, for `path`.
+    fn write(self, temp: &Path, path: &Path) -> anyhow::Result<ExportSummary> {
         self.recorder
-            .write_glb(path)
+            .write_glb(temp)
             .with_context(|| format!("cannot write --export {}", path.display()))?;
         Ok(ExportSummary {
             path: path.to_path_buf(),

@@ -16,14 +16,14 @@
 //! Writes `study.csv` (one row per study, parameter value, method and bond model) and,
 //! per study, a plot of bonds broken and one of fragments released, as PNG and SVG.
 
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use clap::Args;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use shatter_geom::DVec3;
+use shatter_geom::budget::{Estimate, format_count};
 use shatter_geom::fracture::Fracture;
+use shatter_geom::progress::Progress;
 use shatter_report::plot::{LinePlot, Series};
 use shatter_report::table::{Cell, CsvTable};
 use shatter_sim::{
@@ -34,9 +34,11 @@ use shatter_sim::{
 use crate::args::ShapeName;
 use crate::commands::fracture::{
     FractureConfig, MeshSource, MethodConfig, PatternArg, PlacementArg, VoronoiSeeds,
-    fracture_timed, load_source,
+    fracture_estimate, fracture_timed, load_source,
 };
+use crate::context::Context;
 use crate::error::{CliError, ResultExt};
+use crate::output;
 
 /// Arguments of `shatter study`.
 #[derive(Debug, Args)]
@@ -324,6 +326,8 @@ impl StudyConfig {
     }
 }
 
+/// Checks that every value is a finite number ≥ 0 (or > 0) that the simulation's `f32`
+/// holds: break forces and speeds are `f32` in the simulation.
 fn positive(
     flag: &str,
     values: impl IntoIterator<Item = f64>,
@@ -336,6 +340,8 @@ fn positive(
                 "{flag}: {v} is not a finite number {bound}"
             )));
         }
+        shatter_sim::scene::values::narrow_to_f32(v)
+            .map_err(|e| CliError::input(format!("{flag}: {e}")))?;
     }
     Ok(())
 }
@@ -438,9 +444,8 @@ fn released_fragments(fragments: usize, bonds: &[(u32, u32)], broken: &[bool]) -
     fragments - size.into_iter().max().unwrap_or(0)
 }
 
-/// The standard cube fractured as `case` says (through the same code path as
-/// `shatter fracture`).
-fn fracture_case(case: &Case) -> Result<Fracture, CliError> {
+/// The fracture configuration of `case`: the standard cube cut by its method.
+fn case_config(case: &Case) -> FractureConfig {
     let method = match case.method {
         StudyMethod::Tetra => MethodConfig::Tetra {
             random_vertices: case.random_vertices,
@@ -459,20 +464,69 @@ fn fracture_case(case: &Case) -> Result<Fracture, CliError> {
             planes: case.planes,
         },
     };
-    let config = FractureConfig {
+    FractureConfig {
         source: MeshSource::Shape(ShapeName::Cube),
         scale: DVec3::ONE,
         method,
         seed: case.seed,
-    };
+    }
+}
+
+/// The standard cube fractured as `case` says (through the same code path as
+/// `shatter fracture`).
+fn fracture_case(case: &Case) -> Result<Fracture, CliError> {
+    let config = case_config(case);
     let (mesh, _) = load_source(&config)?;
     let (fracture, _, _) = fracture_timed(&mesh, &config)?;
     Ok(fracture)
 }
 
+/// Steps of a case.
+fn case_steps(case: &Case) -> u64 {
+    (case.seconds / f64::from(WorldSettings::default().dt)).ceil() as u64
+}
+
+/// The estimate of the whole study (every case, every run), and of its largest case.
+fn study_estimate(config: &StudyConfig) -> Result<(Estimate, Estimate), CliError> {
+    let cube = library_cube()?;
+    let (mut total, mut largest) = (Estimate::default(), Estimate::default());
+    for &study in &config.studies {
+        for (_, _, case) in config.cases(study) {
+            let (_, fracture) = fracture_estimate(&cube, &case_config(&case));
+            let fragments = fracture_fragments(&case);
+            let one = fracture
+                + shatter_sim::scene::budget::bodies_estimate(fragments)
+                + shatter_sim::scene::budget::run_estimate(fragments, case_steps(&case));
+            largest.bytes = largest.bytes.max(one.bytes);
+            largest.seconds = largest.seconds.max(one.seconds);
+            total.seconds += one.seconds * config.runs as f64;
+        }
+    }
+    total.bytes = largest.bytes;
+    Ok((total, largest))
+}
+
+fn library_cube() -> Result<shatter_geom::TriMesh, CliError> {
+    crate::library::builtin_shape(ShapeName::Cube)
+}
+
+/// Fragments a case is expected to make.
+fn fracture_fragments(case: &Case) -> f64 {
+    match case.method {
+        // The cube's 8 corners (24 split vertices weld to 8) and the random points.
+        StudyMethod::Tetra => {
+            (8 + case.random_vertices) as f64 * shatter_geom::budget::TETRAHEDRA_PER_POINT
+        }
+        StudyMethod::Voronoi => case.pieces as f64,
+        StudyMethod::Slice => shatter_geom::budget::slice_pieces_at_most(case.planes as u64),
+    }
+}
+
 /// Simulates one case: the standard cube (stone, resting on the ground), one shot at the
-/// middle of a face, `seconds` of simulated time.
-fn simulate_case(case: &Case) -> Result<Outcome, CliError> {
+/// middle of a face, `seconds` of simulated time. Ctrl-C (`progress`) stops it between
+/// two steps.
+fn simulate_case(case: &Case, progress: &Progress) -> Result<Outcome, CliError> {
+    progress.check()?;
     let fracture = fracture_case(case)?;
     let material = Material::preset("stone")
         .ok_or_else(|| CliError::internal("the stone material preset is missing"))?;
@@ -506,10 +560,7 @@ fn simulate_case(case: &Case) -> Result<Outcome, CliError> {
         );
     }
     world.start();
-    let steps = (case.seconds / f64::from(world.settings().dt)).ceil() as u64;
-    for _ in 0..steps {
-        world.step();
-    }
+    world.run_steps(case_steps(case), progress, |_, _| Ok::<(), CliError>(()))?;
     let fracture: Arc<Fracture> = world
         .object_fracture(id)
         .ok_or_else(|| CliError::internal("the standard cube vanished"))?;
@@ -591,7 +642,11 @@ fn table(rows: &[Row]) -> Result<CsvTable, CliError> {
 type Metric = fn(&Row) -> Spread;
 
 /// Per study: a plot of bonds broken and one of fragments released (PNG and SVG).
-fn plots(config: &StudyConfig, rows: &[Row]) -> Result<Vec<PathBuf>, CliError> {
+fn plots(
+    config: &StudyConfig,
+    rows: &[Row],
+    progress: &Progress,
+) -> Result<Vec<PathBuf>, CliError> {
     let mut written = Vec::new();
     for &study in &config.studies {
         let study_rows: Vec<&Row> = rows.iter().filter(|r| r.study == study).collect();
@@ -633,12 +688,14 @@ fn plots(config: &StudyConfig, rows: &[Row]) -> Result<Vec<PathBuf>, CliError> {
                 (base.with_extension("png"), false),
                 (base.with_extension("svg"), true),
             ] {
-                if svg {
-                    plot.write_svg(&path)
-                } else {
-                    plot.write_png(&path)
-                }
-                .internal_err("writing a study plot")?;
+                output::via_temp_path(&path, progress, |temp| {
+                    if svg {
+                        plot.write_svg(temp)
+                    } else {
+                        plot.write_png(temp)
+                    }
+                    .internal_err("writing a study plot")
+                })?;
                 written.push(path);
             }
         }
@@ -654,43 +711,46 @@ fn capitalised(s: &str) -> String {
         .unwrap_or_default()
 }
 
-fn progress_bar(len: u64) -> ProgressBar {
-    let target = if std::io::stderr().is_terminal() {
-        ProgressDrawTarget::stderr()
-    } else {
-        ProgressDrawTarget::hidden()
-    };
-    let bar = ProgressBar::with_draw_target(Some(len), target);
-    if let Ok(style) =
-        ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} {msg} (eta {eta})")
-    {
-        bar.set_style(style.progress_chars("=> "));
-    }
-    bar
-}
-
-fn write_outputs(config: &StudyConfig, rows: &[Row]) -> Result<Vec<PathBuf>, CliError> {
+fn write_outputs(
+    config: &StudyConfig,
+    rows: &[Row],
+    progress: &Progress,
+) -> Result<Vec<PathBuf>, CliError> {
     let csv: PathBuf = config.out.join("study.csv");
-    table(rows)?
-        .write(&csv)
-        .input_err(format!("cannot write '{}'", csv.display()))?;
+    let table = table(rows)?;
+    output::via_temp_path(&csv, progress, |temp| {
+        table
+            .write(temp)
+            .input_err(format!("cannot write '{}'", csv.display()))
+    })?;
     let mut written = vec![csv];
-    written.extend(plots(config, rows)?);
+    written.extend(plots(config, rows, progress)?);
     Ok(written)
 }
 
 /// Runs `shatter study`.
-pub fn run(args: &StudyArgs) -> Result<(), CliError> {
+pub fn run(args: &StudyArgs, ctx: &Context) -> Result<(), CliError> {
     let config = StudyConfig::from_args(args)?;
-    ensure_dir(&config.out)?;
     let cases: usize = config.studies.iter().map(|&s| config.cases(s).len()).sum();
-    let bar = progress_bar(cases as u64);
-    let rows = sweep(&config, simulate_case, |case| {
-        bar.set_message(case.to_string());
-        bar.inc(1);
-    })?;
-    bar.finish_and_clear();
-    let written = write_outputs(&config, &rows)?;
+    let (total, _) = study_estimate(&config)?;
+    ctx.check(
+        &format!(
+            "{} cases of {} runs ({} simulated seconds each)",
+            format_count(cases as u64),
+            config.runs,
+            config.baseline.seconds
+        ),
+        &total,
+    )?;
+    ensure_dir(&config.out)?;
+    let bar = ctx.bar(cases as u64, false);
+    let rows = sweep(
+        &config,
+        |case| simulate_case(case, &ctx.progress),
+        |case| bar.tick(case),
+    )?;
+    drop(bar);
+    let written = write_outputs(&config, &rows, &ctx.progress)?;
     println!(
         "{:<16} {:<20} {:>9} {:>10} {:>13} {:>9}",
         "study", "line", "value", "fragments", "bonds broken", "released"
@@ -840,7 +900,7 @@ mod tests {
             }
         );
 
-        let written = write_outputs(&config, &rows).unwrap();
+        let written = write_outputs(&config, &rows, &Progress::none()).unwrap();
         // CSV + 2 studies × 2 metrics × 2 formats.
         assert_eq!(written.len(), 1 + 8);
         let csv = std::fs::read_to_string(dir.path().join("study.csv")).unwrap();

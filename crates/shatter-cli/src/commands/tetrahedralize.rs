@@ -1,18 +1,19 @@
 //! `shatter tetrahedralize`: the 3D Delaunay tetrahedralization of a point file or of
 //! random points.
 
-use std::io::Write;
 use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::{ArgGroup, Args};
 use serde::Serialize;
+use shatter_geom::budget::{Estimate, format_count};
 use shatter_geom::delaunay::{self, Tetrahedralization};
 
 use crate::args::{Distribution, check_writable};
+use crate::context::Context;
 use crate::error::{CliError, ResultExt};
-use crate::library;
 use crate::points_file::read_points_file;
+use crate::{library, memory, output};
 
 /// Arguments of `shatter tetrahedralize`.
 #[derive(Debug, Args)]
@@ -89,32 +90,95 @@ struct Report {
     duplicates: usize,
     tetrahedra: usize,
     millis: f64,
+    /// What the resource check estimated before the work.
+    estimate: EstimateReport,
+    /// The process's peak resident set at the end (Linux only).
+    peak_rss_bytes: Option<u64>,
+}
+
+/// An estimate as reported in `--json`.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct EstimateReport {
+    /// Peak memory, bytes.
+    pub bytes: f64,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+}
+
+impl From<Estimate> for EstimateReport {
+    fn from(e: Estimate) -> Self {
+        Self {
+            bytes: e.bytes,
+            seconds: e.seconds,
+        }
+    }
+}
+
+/// Refuses a tetrahedralization of `points` points that would not fit the limits;
+/// `flag` names the request ("--random 3000000000"). Returns the estimate.
+pub fn check_points(ctx: &Context, flag: &str, points: u64) -> Result<Estimate, CliError> {
+    let estimate = Estimate::delaunay(points);
+    ctx.check(&format!("{flag}: {} points", format_count(points)), &estimate)?;
+    Ok(estimate)
+}
+
+/// Refuses to read a points file whose text alone would not fit the limits (before it
+/// is read): the text, and a point for every 6 bytes (the shortest line, `0 0 0\n`).
+pub fn check_points_file(ctx: &Context, flag: &str, path: &std::path::Path) -> Result<(), CliError> {
+    let Ok(meta) = std::fs::metadata(path) else {
+        // The read reports the missing file.
+        return Ok(());
+    };
+    let bytes = meta.len() as f64;
+    let estimate = Estimate {
+        bytes: bytes + bytes / 6.0 * shatter_geom::budget::POINT_BYTES,
+        seconds: 0.0,
+    };
+    ctx.check(
+        &format!("{flag} {}: reading its {} bytes", path.display(), format_count(meta.len())),
+        &estimate,
+    )
 }
 
 /// Runs `shatter tetrahedralize`.
-pub fn run(args: &TetrahedralizeArgs) -> Result<(), CliError> {
+pub fn run(args: &TetrahedralizeArgs, ctx: &Context) -> Result<(), CliError> {
     let config = args.validate()?;
-    let (points, source_name) = match &config.source {
-        PointSource::File(path) => (
-            read_points_file(path).map_err(CliError::input)?,
-            path.display().to_string(),
-        ),
+    let (points, source_name, estimate) = match &config.source {
+        PointSource::File(path) => {
+            check_points_file(ctx, "--input", path)?;
+            let points = read_points_file(path).map_err(CliError::input)?;
+            let flag = format!("--input {}", path.display());
+            let estimate = check_points(ctx, &flag, points.len() as u64)?;
+            (points, path.display().to_string(), estimate)
+        }
         PointSource::Random {
             n,
             distribution,
             seed,
-        } => (
-            library::random_points(*distribution, *n, *seed)?,
-            format!("{n} random {} points", distribution.as_str()),
-        ),
+        } => {
+            let estimate = check_points(ctx, &format!("--random {n}"), *n as u64)?;
+            (
+                library::random_points(*distribution, *n, *seed)?,
+                format!("{n} random {} points", distribution.as_str()),
+                estimate,
+            )
+        }
     };
+    ctx.progress.check()?;
 
+    let bar = ctx.follow(
+        &format!("tetrahedralizing {} points", format_count(points.len() as u64)),
+        &estimate,
+        config.json,
+    );
     let start = Instant::now();
     let tets = delaunay::tetrahedralize(&points).input_err(&source_name)?;
     let millis = start.elapsed().as_secs_f64() * 1e3;
+    drop(bar);
+    ctx.progress.check()?;
 
     if let Some(out) = &config.out {
-        write_tets(out, &tets)?;
+        write_tets(out, &tets, ctx)?;
     }
     let report = Report {
         points: points.len(),
@@ -122,6 +186,8 @@ pub fn run(args: &TetrahedralizeArgs) -> Result<(), CliError> {
         duplicates: points.len() - tets.unique_points,
         tetrahedra: tets.len(),
         millis,
+        estimate: estimate.into(),
+        peak_rss_bytes: memory::peak_rss_bytes(),
     };
     if config.json {
         println!(
@@ -146,17 +212,22 @@ fn print_summary(report: &Report, out: Option<&std::path::Path>) {
 
 /// Writes one tetrahedron per line, indices into the input as given; a duplicate point
 /// is always written as its first occurrence.
-fn write_tets(path: &std::path::Path, tets: &Tetrahedralization) -> Result<(), CliError> {
-    let write = || -> std::io::Result<()> {
-        let file = std::fs::File::create(path)?;
-        let mut w = std::io::BufWriter::new(file);
-        for t in tets.tetrahedra() {
+/// Written through a temporary file: an interrupted run leaves no partial file.
+fn write_tets(
+    path: &std::path::Path,
+    tets: &Tetrahedralization,
+    ctx: &Context,
+) -> Result<(), CliError> {
+    output::write_file(path, &ctx.progress, |w| {
+        for (k, t) in tets.tetrahedra().enumerate() {
+            if k % 65_536 == 0 && ctx.progress.is_cancelled() {
+                return Err(std::io::Error::other("interrupted"));
+            }
             let [a, b, c, d] = t.map(|i| first_occurrence(tets, i));
             writeln!(w, "{a} {b} {c} {d}")?;
         }
         w.flush()
-    };
-    write().map_err(|e| CliError::input(format!("{}: cannot write: {e}", path.display())))
+    })
 }
 
 fn first_occurrence(tets: &Tetrahedralization, i: u32) -> u32 {

@@ -64,10 +64,7 @@ fn geom_fracture(
     use shatter_geom::fracture as geom;
     let is_file = what.contains('.') || what.contains('/');
     let mesh = if is_file {
-        shatter_geom::io::load_mesh(what).map_err(|e| SimError::Io {
-            path: what.to_string(),
-            reason: e.to_string(),
-        })?
+        shatter_geom::io::load_mesh(what).map_err(|e| crate::scene::load::mesh_error(what, &e))?
     } else {
         shatter_geom::shapes::by_name(what).ok_or_else(|| SimError::UnknownShape {
             key: format!("{key}.shape"),

@@ -1,7 +1,11 @@
-//! The TOML schema of a scene file (see `docs/scene-format.md`). Unknown keys are errors.
+//! The TOML schema of a scene file (see `docs/scene-format.md`). Unknown keys are errors;
+//! vectors must have exactly three components and `f32` numbers must fit `f32` (the
+//! readers in [`super::values`]).
 
 use serde::{Deserialize, Serialize};
 use toml::Spanned;
+
+use super::values;
 
 /// A whole scene file.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
@@ -26,8 +30,10 @@ pub struct SceneFile {
 #[serde(deny_unknown_fields)]
 pub struct WorldSection {
     /// Gravity vector, m/s² (default `[0, -9.81, 0]`).
+    #[serde(default, deserialize_with = "values::opt_vec3")]
     pub gravity: Option<[f32; 3]>,
     /// Fixed step in seconds (default 1/60).
+    #[serde(default, deserialize_with = "values::opt_spanned_f32")]
     pub dt: Option<Spanned<f32>>,
     /// `joints` or `clusters` (default).
     pub bond_model: Option<Spanned<String>>,
@@ -56,6 +62,7 @@ pub struct ObjectEntry {
     /// Pieces for voronoi / slice.
     pub pieces: Option<Spanned<i64>>,
     /// Cells per axis for the grid method.
+    #[serde(default, deserialize_with = "values::opt_spanned_ivec3")]
     pub grid: Option<Spanned<[i64; 3]>>,
     /// The thesis's Random Vertices.
     pub random_vertices: Option<Spanned<i64>>,
@@ -70,22 +77,31 @@ pub struct ObjectEntry {
     /// Material preset (default stone).
     pub material: Option<Spanned<String>>,
     /// Density override (kg/m³).
+    #[serde(default, deserialize_with = "values::opt_f32")]
     pub density: Option<f32>,
     /// Friction override.
+    #[serde(default, deserialize_with = "values::opt_f32")]
     pub friction: Option<f32>,
     /// Restitution override.
+    #[serde(default, deserialize_with = "values::opt_f32")]
     pub restitution: Option<f32>,
     /// The thesis's Breakforce (N); default: the material's strength.
+    #[serde(default, deserialize_with = "values::opt_spanned_f32")]
     pub break_force: Option<Spanned<f32>>,
     /// The thesis's Last (s).
+    #[serde(default, deserialize_with = "values::opt_spanned_f32")]
     pub last: Option<Spanned<f32>>,
     /// RGB in 0..=1.
+    #[serde(default, deserialize_with = "values::opt_spanned_vec3")]
     pub color: Option<Spanned<[f32; 3]>>,
     /// Position (default `[0, 10, 0]`, the thesis's default).
+    #[serde(default, deserialize_with = "values::opt_vec3")]
     pub position: Option<[f32; 3]>,
     /// Euler angles in degrees (XYZ).
+    #[serde(default, deserialize_with = "values::opt_vec3")]
     pub rotation: Option<[f32; 3]>,
     /// Scale (default `[1, 1, 1]`).
+    #[serde(default, deserialize_with = "values::opt_spanned_vec3")]
     pub scale: Option<Spanned<[f32; 3]>>,
     /// joints or clusters (default: the world's).
     pub bond_model: Option<Spanned<String>>,
@@ -104,18 +120,25 @@ pub struct ProjectileEntry {
     /// A mesh file whose convex hull is the projectile.
     pub mesh: Option<String>,
     /// Size in metres.
+    #[serde(default, deserialize_with = "values::opt_spanned_f32")]
     pub size: Option<Spanned<f32>>,
     /// Density in kg/m³.
+    #[serde(default, deserialize_with = "values::opt_spanned_f32")]
     pub density: Option<Spanned<f32>>,
     /// Speed in m/s.
+    #[serde(default, deserialize_with = "values::opt_spanned_f32")]
     pub speed: Option<Spanned<f32>>,
     /// RGB in 0..=1.
+    #[serde(default, deserialize_with = "values::opt_spanned_vec3")]
     pub color: Option<Spanned<[f32; 3]>>,
     /// Lifetime in seconds.
+    #[serde(default, deserialize_with = "values::opt_spanned_f32")]
     pub last: Option<Spanned<f32>>,
     /// Start point.
+    #[serde(deserialize_with = "values::vec3")]
     pub from: [f32; 3],
     /// Aim point.
+    #[serde(deserialize_with = "values::vec3")]
     pub to: [f32; 3],
 }
 
@@ -126,9 +149,12 @@ pub struct ExplosionEntry {
     /// Seconds after start (default 0).
     pub at: Option<Spanned<f64>>,
     /// Centre.
+    #[serde(deserialize_with = "values::vec3")]
     pub position: [f32; 3],
     /// Radius in metres.
+    #[serde(deserialize_with = "values::spanned_f32")]
     pub radius: Spanned<f32>,
     /// Impulse at the centre (N·s).
+    #[serde(deserialize_with = "values::spanned_f32")]
     pub power: Spanned<f32>,
 }

@@ -198,6 +198,21 @@ impl Scene {
     }
 }
 
+/// A mesh file that did not load, named once: the library's message already starts with
+/// the path ("x.obj: unknown mesh format"), which [`SimError::Io`] prints itself.
+pub(crate) fn mesh_error(path: &str, e: &shatter_geom::io::MeshIoError) -> SimError {
+    let message = e.to_string();
+    let reason = message
+        .strip_prefix(path)
+        .and_then(|r| r.strip_prefix(": "))
+        .unwrap_or(&message)
+        .to_string();
+    SimError::Io {
+        path: path.to_string(),
+        reason,
+    }
+}
+
 fn bond_model(ctx: &Ctx, key: &str, v: &Spanned<String>) -> Result<BondModel, SimError> {
     BondModel::from_name(v.get_ref()).ok_or_else(|| {
         SimError::invalid(
@@ -438,10 +453,7 @@ fn projectile(
     let shape = match (&p.shape, &p.mesh) {
         (_, Some(m)) => {
             let path = ctx.path(m);
-            let mesh = shatter_geom::io::load_mesh(&path).map_err(|e| SimError::Io {
-                path: path.clone(),
-                reason: e.to_string(),
-            })?;
+            let mesh = shatter_geom::io::load_mesh(&path).map_err(|e| mesh_error(&path, &e))?;
             ProjectileShape::Custom(mesh.positions)
         }
         (Some(s), None) => {

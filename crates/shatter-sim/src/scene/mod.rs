@@ -1,9 +1,12 @@
 //! Scenes as TOML files: world settings, breakable objects, timed projectiles and
 //! explosions. The schema is documented in `docs/scene-format.md`.
 
+pub mod budget;
 pub mod file;
 pub mod load;
 mod save;
+pub mod values;
 
+pub use budget::{ObjectEstimate, SceneEstimate};
 pub use file::SceneFile;
 pub use load::{Scene, line_col};

@@ -1,6 +1,7 @@
 //! The simulation world: controls, stepping, queries.
 
 mod query;
+mod run;
 mod settings;
 pub(crate) mod state;
 mod step;
