@@ -105,14 +105,14 @@ mod tests {
             memory_source: "MemTotal in /proc/meminfo",
         });
         let e = ctx
-            .check(
-                "3,000,000,000 points",
-                &Estimate::delaunay(3_000_000_000),
-            )
+            .check("3,000,000,000 points", &Estimate::delaunay(3_000_000_000))
             .unwrap_err();
         assert_eq!(e.exit_code(), 2);
         let text = e.to_string();
-        assert!(text.contains("this machine has 24 GB (MemTotal in /proc/meminfo)"), "{text}");
+        assert!(
+            text.contains("this machine has 24 GB (MemTotal in /proc/meminfo)"),
+            "{text}"
+        );
         assert!(text.contains("--no-limits"), "{text}");
         assert!(ctx.check("1,000 points", &Estimate::delaunay(1000)).is_ok());
         let none = Context::with_limits(Limits::none());

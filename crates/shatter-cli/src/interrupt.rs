@@ -89,8 +89,18 @@ mod tests {
     fn temp_files_are_registered_and_forgotten() {
         let a = Path::new("/nonexistent/a.tmp");
         register_temp_file(a);
-        assert!(state().temp_files.lock().is_ok_and(|f| f.iter().any(|p| p == a)));
+        assert!(
+            state()
+                .temp_files
+                .lock()
+                .is_ok_and(|f| f.iter().any(|p| p == a))
+        );
         unregister_temp_file(a);
-        assert!(state().temp_files.lock().is_ok_and(|f| !f.iter().any(|p| p == a)));
+        assert!(
+            state()
+                .temp_files
+                .lock()
+                .is_ok_and(|f| !f.iter().any(|p| p == a))
+        );
     }
 }

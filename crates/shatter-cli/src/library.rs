@@ -3,9 +3,9 @@
 
 use std::path::Path;
 
-use shatter_geom::progress::Progress;
 use shatter_geom::fracture::{Fracture, FractureParams, Method, Pattern, Placement};
 use shatter_geom::io::{self, ExportObject};
+use shatter_geom::progress::Progress;
 use shatter_geom::sampling;
 use shatter_geom::{DVec3, TriMesh};
 

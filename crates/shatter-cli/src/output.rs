@@ -56,7 +56,8 @@ pub fn write_file(
     write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
 ) -> Result<(), CliError> {
     via_temp_path(path, progress, |temp| {
-        let fail = |e: std::io::Error| CliError::input(format!("{}: cannot write: {e}", path.display()));
+        let fail =
+            |e: std::io::Error| CliError::input(format!("{}: cannot write: {e}", path.display()));
         let file = std::fs::File::create(temp).map_err(fail)?;
         let mut out = std::io::BufWriter::new(file);
         write(&mut out).map_err(fail)?;
@@ -119,6 +120,10 @@ mod tests {
         })
         .unwrap_err();
         assert!(matches!(e, CliError::Interrupted));
-        assert!(files_in(dir.path()).is_empty(), "{:?}", files_in(dir.path()));
+        assert!(
+            files_in(dir.path()).is_empty(),
+            "{:?}",
+            files_in(dir.path())
+        );
     }
 }

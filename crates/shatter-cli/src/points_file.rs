@@ -241,10 +241,11 @@ mod tests {
         }
     }
 
-    const VALID: &str = "# a tetrahedron and its centre\n0 0 0\n1 0 0\n0 1 0   # c\n0 0 1\n\n0.25 0.25 0.25\n";
+    const VALID: &str =
+        "# a tetrahedron and its centre\n0 0 0\n1 0 0\n0 1 0   # c\n0 0 1\n\n0.25 0.25 0.25\n";
     const TOKENS: [&str; 16] = [
-        "1e400", "-1e-400", "nan", "inf", "0x10", "1,5", "#", "\n", "\t", " ", "\r\n", "1e",
-        "+", "-0", "١", "\u{feff}",
+        "1e400", "-1e-400", "nan", "inf", "0x10", "1,5", "#", "\n", "\t", " ", "\r\n", "1e", "+",
+        "-0", "١", "\u{feff}",
     ];
 
     proptest::proptest! {

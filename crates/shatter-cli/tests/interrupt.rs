@@ -49,12 +49,21 @@ fn ctrl_c_stops_a_simulation_between_steps_and_writes_nothing() {
     .unwrap();
     let (code, stderr) = interrupt(
         dir.path(),
-        &["simulate", "long.toml", "--export", "run.glb", "--record", "run.csv"],
+        &[
+            "simulate",
+            "long.toml",
+            "--export",
+            "run.glb",
+            "--record",
+            "run.csv",
+        ],
         Duration::from_millis(1500),
     );
     assert_eq!(code, Some(130), "stderr:\n{stderr}");
     assert!(
-        stderr.contains("error: interrupted (Ctrl-C): stopped before the end; no output file was written"),
+        stderr.contains(
+            "error: interrupted (Ctrl-C): stopped before the end; no output file was written"
+        ),
         "{stderr}"
     );
     assert!(
@@ -76,5 +85,9 @@ fn ctrl_c_stops_a_tetrahedralization_and_leaves_no_output() {
     );
     assert_eq!(code, Some(130), "stderr:\n{stderr}");
     assert!(stderr.contains("interrupted (Ctrl-C)"), "{stderr}");
-    assert!(files_in(dir.path()).is_empty(), "{:?}", files_in(dir.path()));
+    assert!(
+        files_in(dir.path()).is_empty(),
+        "{:?}",
+        files_in(dir.path())
+    );
 }

@@ -9,55 +9,67 @@
 //! let limits = Limits { memory_bytes: Some(24e9 as u64), seconds: None, memory_source: "test" };
 //! let huge = Estimate::delaunay(3_000_000_000);
 //! let err = limits.check("3,000,000,000 points", &huge).unwrap_err();
-//! assert!(err.to_string().starts_with("3,000,000,000 points need about 6"), "{err}");
+//! assert!(err.to_string().starts_with("3,000,000,000 points need about 850 GB"), "{err}");
 //! assert!(limits.check("1,000 points", &Estimate::delaunay(1000)).is_ok());
 //! ```
 //!
 //! # Basis of the figures
 //!
 //! Every constant below was measured with the release build on the project's 2-core
-//! machine (the commands are in the comments) and is rounded up. Memory is the rise of the
-//! peak resident set (`VmHWM`) over the run; time is wall-clock on one or two cores. The
-//! estimates are meant to be within a factor of two of a real run for memory and a factor
-//! of four for time (time depends on the machine); tests check the memory factor at small
-//! sizes. They are estimates for *refusing* requests far beyond the machine, not
-//! predictions to the percent.
+//! machine (the commands are in the comments) and is rounded up. Memory is the peak
+//! resident set (`VmHWM`) of the run above the process's own; time is CPU time on a
+//! machine shared with other builds, which is close to the wall-clock time on a quiet
+//! machine. The memory estimates are within a factor of two of a real run (the
+//! command line's tests check it at small sizes); the time estimates within a factor of
+//! about four on uniform input (time depends on the machine and the input's
+//! degeneracy), and are not tested, as tests are not timed. They are estimates for
+//! *refusing* requests far beyond the machine, not predictions to the percent.
 
 use std::fmt;
 
+/// A shatter process's own resident set before any work (the binary, the thread pool's
+/// stacks, the allocator): `shatter tetrahedralize --random 100` peaks at 5.9 MB.
+pub const PROCESS_BYTES: f64 = 8.0e6;
 /// Peak bytes per point of a Delaunay tetrahedralization above its input (the packed
-/// records, the walk's and the BRIO order's buffers). `shatter bench delaunay --sizes
-/// 100000,1000000,3000000` measured 150-200 bytes per point for uniform points.
-pub const DELAUNAY_BYTES_PER_POINT: f64 = 220.0;
-/// Bytes of one input point (`DVec3`) and its share of the sampling buffers.
-pub const POINT_BYTES: f64 = 48.0;
-/// Points inserted per second by the Delaunay tetrahedralization (release, uniform
-/// points: `shatter bench delaunay` gives about 1.0-1.5 million points per second).
-pub const DELAUNAY_POINTS_PER_SECOND: f64 = 1.0e6;
-/// Tetrahedra per point of a 3D Delaunay tetrahedralization of uniform points (about 6.5;
-/// points on a surface give fewer).
-pub const TETRAHEDRA_PER_POINT: f64 = 6.6;
-/// Bytes per fragment of a tetra fracture at its peak (the fragment's mesh, flags, convex
-/// piece, mass properties and its share of the bonds, plus the Delaunay records):
-/// `shatter fracture --shape cube --method tetra --random-vertices 20000 --json` peaks at
-/// about 1.1 kB per fragment.
-pub const TETRA_BYTES_PER_FRAGMENT: f64 = 1500.0;
-/// Fragments of a tetra fracture made per second (release).
-pub const TETRA_FRAGMENTS_PER_SECOND: f64 = 60_000.0;
-/// Bytes per Voronoi cell at the peak (its clipped mesh with caps, convex pieces, bonds).
+/// records, the BRIO order, the walk's buffers). `shatter bench delaunay --sizes
+/// 100000,1000000,3000000` measured 203, 190 and 244 bytes per point for uniform points
+/// (beyond about two million points the records are wider).
+pub const DELAUNAY_BYTES_PER_POINT: f64 = 250.0;
+/// Bytes of one input point (a `DVec3`) and its share of the sampling buffers.
+pub const POINT_BYTES: f64 = 32.0;
+/// Points inserted per second by the Delaunay tetrahedralization, uniform points, on a
+/// quiet 2-core machine: 1,000,000 points in 3.5-4.2 s (`bench/cgal/README.md`).
+/// Degenerate sets (points on a sphere) take up to 5 times longer.
+pub const DELAUNAY_POINTS_PER_SECOND: f64 = 2.5e5;
+/// Tetrahedra per point of a 3D Delaunay tetrahedralization of uniform points (6.7 for a
+/// million points; points on a surface give fewer).
+pub const TETRAHEDRA_PER_POINT: f64 = 6.7;
+/// Bytes per tetrahedron of a tetra fracture at its peak (each tetrahedron is a piece
+/// before slivers are merged): `shatter fracture --shape cube --method tetra
+/// --random-vertices 80000 --json` peaks at 149 MB for 528,000 tetrahedra.
+pub const TETRA_BYTES_PER_TETRAHEDRON: f64 = 300.0;
+/// CPU seconds per tetrahedron of a tetra fracture after the tetrahedralization (the
+/// same run: 1.1 s of CPU).
+pub const TETRA_SECONDS_PER_TETRAHEDRON: f64 = 2.0e-6;
+/// Bytes per Voronoi cell at the peak (its clipped mesh with caps, convex pieces,
+/// bonds): `shatter fracture --shape bird --pieces 1000` and `--pieces 4000` peak at
+/// 11 and 10.5 kB per cell above the process.
 pub const VORONOI_BYTES_PER_CELL: f64 = 12_000.0;
-/// Bytes per cell and per mesh triangle: every cell starts as a copy of the whole mesh
-/// while it is clipped; the copies of the cells in flight and the cells' shares of the
-/// surface are bounded by this.
-pub const VORONOI_BYTES_PER_TRIANGLE: f64 = 400.0;
-/// Seconds per Voronoi cell (clipping a small cell, building its fragment and bonds).
-pub const VORONOI_SECONDS_PER_CELL: f64 = 2.0e-4;
-/// Seconds per Voronoi cell and per mesh triangle (the first cuts see the whole mesh).
-pub const VORONOI_SECONDS_PER_CELL_TRIANGLE: f64 = 2.0e-7;
-/// Bytes per slice piece at the peak.
+/// Bytes per mesh triangle for each cell being clipped at once (each starts as a copy
+/// of the whole mesh) and for the surface the fragments share.
+pub const BYTES_PER_TRIANGLE: f64 = 400.0;
+/// Seconds per Voronoi cell, whatever the mesh (building its fragment and bonds).
+pub const VORONOI_SECONDS_PER_CELL: f64 = 3.0e-5;
+/// Seconds per Voronoi cell and mesh triangle (the first cuts see the whole mesh): the
+/// bird's 1,394 triangles into 1,000 and 4,000 cells took 0.16 and 0.49 s of CPU on 2
+/// threads.
+pub const VORONOI_SECONDS_PER_CELL_TRIANGLE: f64 = 5.0e-8;
+/// Bytes per slice piece at the peak: `--method slice --pieces 48` on the bird made
+/// 1,026 pieces and peaked 11 MB above the process.
 pub const SLICE_BYTES_PER_PIECE: f64 = 12_000.0;
-/// Seconds per slice piece and per plane (every plane is tried on every piece).
-pub const SLICE_SECONDS_PER_PIECE_PLANE: f64 = 2.0e-6;
+/// Seconds per slice piece and per plane (every plane is tried on every piece): the same
+/// run took 0.3 s of CPU for 1,026 pieces × 48 planes.
+pub const SLICE_SECONDS_PER_PIECE_PLANE: f64 = 6.0e-6;
 
 /// What a computation needs: peak memory in bytes and wall-clock seconds.
 ///
@@ -93,14 +105,14 @@ impl Estimate {
     }
 
     /// The tetra fracture of a mesh with `points` Delaunay points (surface vertices kept
-    /// after `skip`, random points, the centre): the tetrahedralization, then a fragment
-    /// per tetrahedron.
+    /// after `skip`, random points, the centre): the tetrahedralization, then a piece
+    /// per tetrahedron (slivers are merged afterwards).
     pub fn tetra_fracture(points: u64) -> Estimate {
-        let fragments = points as f64 * TETRAHEDRA_PER_POINT;
+        let tetrahedra = points as f64 * TETRAHEDRA_PER_POINT;
         Estimate::delaunay(points)
             + Estimate {
-                bytes: fragments * TETRA_BYTES_PER_FRAGMENT,
-                seconds: fragments / TETRA_FRAGMENTS_PER_SECOND,
+                bytes: tetrahedra * TETRA_BYTES_PER_TETRAHEDRON,
+                seconds: tetrahedra * TETRA_SECONDS_PER_TETRAHEDRON,
             }
     }
 
@@ -112,22 +124,45 @@ impl Estimate {
         let in_flight = k.min(threads());
         Estimate::delaunay(cells)
             + Estimate {
-                bytes: k * VORONOI_BYTES_PER_CELL + (in_flight + 1.0) * t * VORONOI_BYTES_PER_TRIANGLE,
+                bytes: k * VORONOI_BYTES_PER_CELL + (in_flight + 1.0) * t * BYTES_PER_TRIANGLE,
                 seconds: k * (VORONOI_SECONDS_PER_CELL + t * VORONOI_SECONDS_PER_CELL_TRIANGLE),
             }
     }
 
-    /// The slice fracture of a mesh of `triangles` triangles by `planes` planes. Each
-    /// plane cuts every piece it crosses, so `planes` planes can make up to
-    /// `(p³ + 5p + 6) / 6` pieces ([`slice_pieces_at_most`]).
+    /// The slice fracture of a mesh of `triangles` triangles by `planes` planes, making
+    /// [`slice_pieces`] pieces.
     pub fn slice_fracture(planes: u64, triangles: u64) -> Estimate {
-        let pieces = slice_pieces_at_most(planes);
-        let p = planes as f64;
+        let pieces = slice_pieces(planes);
         Estimate {
-            bytes: pieces * SLICE_BYTES_PER_PIECE + triangles as f64 * VORONOI_BYTES_PER_TRIANGLE,
-            seconds: pieces * p * SLICE_SECONDS_PER_PIECE_PLANE,
+            bytes: pieces * SLICE_BYTES_PER_PIECE + triangles as f64 * BYTES_PER_TRIANGLE,
+            seconds: pieces * planes as f64 * SLICE_SECONDS_PER_PIECE_PLANE,
         }
     }
+
+    /// This estimate with the process's own memory ([`PROCESS_BYTES`]) added: what the
+    /// peak resident set of a process doing only this work is expected to be.
+    pub fn with_process(self) -> Estimate {
+        Estimate {
+            bytes: self.bytes + PROCESS_BYTES,
+            ..self
+        }
+    }
+}
+
+/// Pieces `planes` random slice planes are expected to make: `0.6 p² + p`, fitted on the
+/// bird (4, 8, 16, 32 and 48 planes made 12, 36, 159, 540 and 1,026 pieces; the fit
+/// gives 14, 46, 170, 646 and 1,430), and never more than [`slice_pieces_at_most`].
+pub fn slice_pieces(planes: u64) -> f64 {
+    let p = planes as f64;
+    (0.6 * p * p + p).min(slice_pieces_at_most(planes)).max(1.0)
+}
+
+/// Fragments a fracture can return at most: pieces below
+/// [`SLIVER_VOLUME_FRACTION`](crate::fracture::SLIVER_VOLUME_FRACTION) of the mesh's
+/// volume are merged into a neighbour, so `n` requested pieces give at most
+/// `min(n, 1 / fraction)` fragments (10,000).
+pub fn fragments_at_most(pieces: f64) -> f64 {
+    pieces.min(1.0 / crate::fracture::SLIVER_VOLUME_FRACTION)
 }
 
 /// The most pieces `planes` planes can cut a convex solid into: the cells of an
@@ -347,7 +382,11 @@ pub fn format_duration(seconds: f64) -> String {
     }
     let number = significant(value);
     // "1 hour", not "1 hours".
-    let name = if number == "1" { unit.1.trim_end_matches('s') } else { unit.1 };
+    let name = if number == "1" {
+        unit.1.trim_end_matches('s')
+    } else {
+        unit.1
+    };
     format!("{number} {name}")
 }
 
@@ -389,13 +428,19 @@ mod tests {
             .check("3,000,000,000 points", &Estimate::delaunay(3_000_000_000))
             .unwrap_err();
         let text = e.to_string();
-        assert!(text.starts_with("3,000,000,000 points need about"), "{text}");
-        assert!(text.contains(" GB; this machine has 24 GB (test)"), "{text}");
+        assert!(
+            text.starts_with("3,000,000,000 points need about 850 GB"),
+            "{text}"
+        );
+        assert!(
+            text.contains(" GB; this machine has 24 GB (test)"),
+            "{text}"
+        );
         let BudgetError::Memory { needs_bytes, .. } = e else {
             panic!("not a memory refusal: {e}");
         };
-        // 3e9 points at 190-270 bytes each.
-        assert!((5.7e11..8.2e11).contains(&needs_bytes), "{needs_bytes}");
+        // 3e9 points at 244 bytes each (bench delaunay) and their 24 bytes.
+        assert!((8.0e11..9.0e11).contains(&needs_bytes), "{needs_bytes}");
     }
 
     #[test]
@@ -417,13 +462,19 @@ mod tests {
             bytes: 1.0,
             seconds: 3.0e9,
         };
-        let err = limits(24.0, Some(3600.0)).check("the scene", &e).unwrap_err();
+        let err = limits(24.0, Some(3600.0))
+            .check("the scene", &e)
+            .unwrap_err();
         assert_eq!(
             err.to_string(),
             "the scene would take about 95 years; the limit is 1 hour"
         );
         assert!(limits(24.0, None).check("the scene", &e).is_ok());
-        assert!(Limits::none().check("it", &Estimate::delaunay(u64::MAX)).is_ok());
+        assert!(
+            Limits::none()
+                .check("it", &Estimate::delaunay(u64::MAX))
+                .is_ok()
+        );
     }
 
     #[test]
@@ -438,6 +489,10 @@ mod tests {
         assert_eq!(slice_pieces_at_most(0), 1.0);
         assert_eq!(slice_pieces_at_most(1), 2.0);
         assert_eq!(slice_pieces_at_most(3), 8.0);
+        assert_eq!(slice_pieces(1), 1.6);
+        assert_eq!(slice_pieces(48), 0.6 * 48.0 * 48.0 + 48.0);
+        assert_eq!(fragments_at_most(4000.0), 4000.0);
+        assert_eq!(fragments_at_most(1e9), 10_000.0);
     }
 
     #[test]

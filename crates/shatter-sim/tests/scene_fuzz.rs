@@ -15,10 +15,30 @@ const SCENES: [&str; 5] = [
 
 /// Values and fragments a mutation splices in: edge cases of every kind of value.
 const TOKENS: [&str; 24] = [
-    "1e300", "-1e300", "1e-300", "nan", "inf", "-inf", "0", "-1", "99999999999999999999",
-    "[0, 1, 0, 99]", "[0, 1]", "[]", "\"\"", "\"x\"", "[[objects]]\n", "[world]\n",
-    "[[projectiles]]\nfrom = [0, 0, 0]\nto = [1, 0, 0]\n", "=", "\n", "#", "grid = [1000, 1000, 1000]\n",
-    "dt = 1e-9\n", "pieces = 0\n", "{ a = 1 }",
+    "1e300",
+    "-1e300",
+    "1e-300",
+    "nan",
+    "inf",
+    "-inf",
+    "0",
+    "-1",
+    "99999999999999999999",
+    "[0, 1, 0, 99]",
+    "[0, 1]",
+    "[]",
+    "\"\"",
+    "\"x\"",
+    "[[objects]]\n",
+    "[world]\n",
+    "[[projectiles]]\nfrom = [0, 0, 0]\nto = [1, 0, 0]\n",
+    "=",
+    "\n",
+    "#",
+    "grid = [1000, 1000, 1000]\n",
+    "dt = 1e-9\n",
+    "pieces = 0\n",
+    "{ a = 1 }",
 ];
 
 /// Checks what `Scene::parse` said about `text`: an error with a message, or a scene
@@ -32,15 +52,18 @@ fn check(text: &str) {
             assert!(scene.settings.gravity.is_finite());
             assert!(scene.seconds.is_finite() && scene.seconds > 0.0);
             for (i, o) in scene.objects.iter().enumerate() {
-                o.validate(&format!("objects[{i}]")).expect("an accepted object is valid");
+                o.validate(&format!("objects[{i}]"))
+                    .expect("an accepted object is valid");
             }
             for (at, p) in &scene.projectiles {
                 assert!(at.is_finite() && *at >= 0.0);
-                p.validate("projectile").expect("an accepted projectile is valid");
+                p.validate("projectile")
+                    .expect("an accepted projectile is valid");
             }
             for (at, e) in &scene.explosions {
                 assert!(at.is_finite() && *at >= 0.0);
-                e.validate("explosion").expect("an accepted explosion is valid");
+                e.validate("explosion")
+                    .expect("an accepted explosion is valid");
             }
             let steps = scene.steps(None, None);
             let estimate = scene.estimate(steps);
@@ -67,7 +90,8 @@ fn mutation() -> impl Strategy<Value = Mutation> {
     prop_oneof![
         (any::<usize>(), any::<u8>()).prop_map(|(p, b)| Mutation::Flip(p, b)),
         (any::<usize>(), 1usize..40).prop_map(|(p, n)| Mutation::Delete(p, n)),
-        (any::<usize>(), 1usize..80, any::<usize>()).prop_map(|(a, n, b)| Mutation::Duplicate(a, n, b)),
+        (any::<usize>(), 1usize..80, any::<usize>())
+            .prop_map(|(a, n, b)| Mutation::Duplicate(a, n, b)),
         (any::<usize>(), 0..TOKENS.len()).prop_map(|(p, t)| Mutation::Insert(p, t)),
         (any::<usize>(), 0..TOKENS.len()).prop_map(|(k, t)| Mutation::ReplaceValue(k, t)),
     ]

@@ -467,10 +467,15 @@ fn creation_estimate(
         for &placement in &config.placements {
             let runs = |count: usize, n: f64| {
                 let (_, e) = fracture_estimate(mesh, &fracture_config(*model, placement, count, 0));
-                let fragments = (mesh.positions.len() + count) as f64
-                    * shatter_geom::budget::TETRAHEDRA_PER_POINT;
+                let fragments = shatter_geom::budget::fragments_at_most(
+                    (mesh.positions.len() + count) as f64
+                        * shatter_geom::budget::TETRAHEDRA_PER_POINT,
+                );
                 let bodies = if config.with_bodies {
-                    shatter_sim::scene::budget::bodies_estimate(fragments)
+                    shatter_sim::scene::budget::bodies_estimate(
+                        fragments,
+                        shatter_sim::BondModel::Joints,
+                    )
                 } else {
                     Estimate::default()
                 };

@@ -92,11 +92,15 @@ pub fn run(args: &BenchStepArgs, ctx: &Context) -> Result<BenchStepReport, CliEr
         )));
     }
     let steps = steps_of(args.seconds);
-    let one = bodies_estimate(WALL_FRAGMENTS) + run_estimate(WALL_FRAGMENTS, steps);
+    let joints = bodies_estimate(WALL_FRAGMENTS, BondModel::Joints)
+        + run_estimate(WALL_FRAGMENTS, BondModel::Joints, steps);
+    let clusters = bodies_estimate(WALL_FRAGMENTS, BondModel::Clusters)
+        + run_estimate(WALL_FRAGMENTS, BondModel::Clusters, steps);
     let estimate = shatter_geom::budget::Estimate {
-        bytes: one.bytes,
-        seconds: 2.0 * one.seconds,
-    };
+        bytes: joints.bytes.max(clusters.bytes),
+        seconds: joints.seconds + clusters.seconds,
+    }
+    .with_process();
     ctx.check(
         &format!(
             "--seconds {}: 2 x {} steps of the 2,000-brick wall",

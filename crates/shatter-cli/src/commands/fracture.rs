@@ -379,7 +379,7 @@ pub fn fracture_estimate(mesh: &TriMesh, config: &FractureConfig) -> (String, Es
                     "--random-vertices {random_vertices}: a tetra fracture of {} points",
                     format_count(points)
                 ),
-                Estimate::tetra_fracture(points),
+                Estimate::tetra_fracture(points).with_process(),
             )
         }
         MethodConfig::Voronoi { seeds, .. } => {
@@ -393,16 +393,16 @@ pub fn fracture_estimate(mesh: &TriMesh, config: &FractureConfig) -> (String, Es
                     format_count(cells as u64),
                     format_count(triangles)
                 ),
-                Estimate::voronoi_fracture(cells as u64, triangles),
+                Estimate::voronoi_fracture(cells as u64, triangles).with_process(),
             )
         }
         MethodConfig::Slice { planes } => (
             format!(
-                "--pieces {planes}: {} slice planes (up to {:.3e} pieces)",
+                "--pieces {planes}: {} slice planes (about {} pieces)",
                 format_count(*planes as u64),
-                shatter_geom::budget::slice_pieces_at_most(*planes as u64)
+                format_count(shatter_geom::budget::slice_pieces(*planes as u64) as u64)
             ),
-            Estimate::slice_fracture(*planes as u64, triangles),
+            Estimate::slice_fracture(*planes as u64, triangles).with_process(),
         ),
     }
 }
@@ -449,7 +449,11 @@ pub fn run(args: &FractureArgs, ctx: &Context) -> Result<(), CliError> {
     let (mesh, mut warnings) = load_source(&config)?;
     let estimate = check_fracture(ctx, &mesh, &config)?;
     ctx.progress.check()?;
-    let bar = ctx.follow(&format!("fracture ({})", config.describe()), &estimate, args.json);
+    let bar = ctx.follow(
+        &format!("fracture ({})", config.describe()),
+        &estimate,
+        args.json,
+    );
     let (fracture, more_warnings, millis) = fracture_timed(&mesh, &config)?;
     drop(bar);
     ctx.progress.check()?;

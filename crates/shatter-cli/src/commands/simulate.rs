@@ -203,8 +203,8 @@ pub fn run(args: &SimulateArgs, ctx: &Context) -> Result<SimulateReport, CliErro
         )));
     }
     let scene_name = args.scene.display().to_string();
-    let scene = Scene::load(&args.scene)
-        .map_err(|e| CliError::input(format!("{scene_name}: {e}")))?;
+    let scene =
+        Scene::load(&args.scene).map_err(|e| CliError::input(format!("{scene_name}: {e}")))?;
     let steps = scene.steps(args.steps, args.seconds);
     let estimate = scene
         .check_budget(steps, &ctx.limits)

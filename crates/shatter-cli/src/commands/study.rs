@@ -495,8 +495,12 @@ fn study_estimate(config: &StudyConfig) -> Result<(Estimate, Estimate), CliError
             let (_, fracture) = fracture_estimate(&cube, &case_config(&case));
             let fragments = fracture_fragments(&case);
             let one = fracture
-                + shatter_sim::scene::budget::bodies_estimate(fragments)
-                + shatter_sim::scene::budget::run_estimate(fragments, case_steps(&case));
+                + shatter_sim::scene::budget::bodies_estimate(fragments, case.bond_model)
+                + shatter_sim::scene::budget::run_estimate(
+                    fragments,
+                    case.bond_model,
+                    case_steps(&case),
+                );
             largest.bytes = largest.bytes.max(one.bytes);
             largest.seconds = largest.seconds.max(one.seconds);
             total.seconds += one.seconds * config.runs as f64;
@@ -512,14 +516,13 @@ fn library_cube() -> Result<shatter_geom::TriMesh, CliError> {
 
 /// Fragments a case is expected to make.
 fn fracture_fragments(case: &Case) -> f64 {
-    match case.method {
+    use shatter_geom::budget::{TETRAHEDRA_PER_POINT, fragments_at_most, slice_pieces};
+    fragments_at_most(match case.method {
         // The cube's 8 corners (24 split vertices weld to 8) and the random points.
-        StudyMethod::Tetra => {
-            (8 + case.random_vertices) as f64 * shatter_geom::budget::TETRAHEDRA_PER_POINT
-        }
+        StudyMethod::Tetra => (8 + case.random_vertices) as f64 * TETRAHEDRA_PER_POINT,
         StudyMethod::Voronoi => case.pieces as f64,
-        StudyMethod::Slice => shatter_geom::budget::slice_pieces_at_most(case.planes as u64),
-    }
+        StudyMethod::Slice => slice_pieces(case.planes as u64),
+    })
 }
 
 /// Simulates one case: the standard cube (stone, resting on the ground), one shot at the

@@ -117,14 +117,21 @@ impl From<Estimate> for EstimateReport {
 /// Refuses a tetrahedralization of `points` points that would not fit the limits;
 /// `flag` names the request ("--random 3000000000"). Returns the estimate.
 pub fn check_points(ctx: &Context, flag: &str, points: u64) -> Result<Estimate, CliError> {
-    let estimate = Estimate::delaunay(points);
-    ctx.check(&format!("{flag}: {} points", format_count(points)), &estimate)?;
+    let estimate = Estimate::delaunay(points).with_process();
+    ctx.check(
+        &format!("{flag}: {} points", format_count(points)),
+        &estimate,
+    )?;
     Ok(estimate)
 }
 
 /// Refuses to read a points file whose text alone would not fit the limits (before it
 /// is read): the text, and a point for every 6 bytes (the shortest line, `0 0 0\n`).
-pub fn check_points_file(ctx: &Context, flag: &str, path: &std::path::Path) -> Result<(), CliError> {
+pub fn check_points_file(
+    ctx: &Context,
+    flag: &str,
+    path: &std::path::Path,
+) -> Result<(), CliError> {
     let Ok(meta) = std::fs::metadata(path) else {
         // The read reports the missing file.
         return Ok(());
@@ -135,7 +142,11 @@ pub fn check_points_file(ctx: &Context, flag: &str, path: &std::path::Path) -> R
         seconds: 0.0,
     };
     ctx.check(
-        &format!("{flag} {}: reading its {} bytes", path.display(), format_count(meta.len())),
+        &format!(
+            "{flag} {}: reading its {} bytes",
+            path.display(),
+            format_count(meta.len())
+        ),
         &estimate,
     )
 }
@@ -167,7 +178,10 @@ pub fn run(args: &TetrahedralizeArgs, ctx: &Context) -> Result<(), CliError> {
     ctx.progress.check()?;
 
     let bar = ctx.follow(
-        &format!("tetrahedralizing {} points", format_count(points.len() as u64)),
+        &format!(
+            "tetrahedralizing {} points",
+            format_count(points.len() as u64)
+        ),
         &estimate,
         config.json,
     );

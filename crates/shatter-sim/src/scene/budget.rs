@@ -19,32 +19,37 @@
 //!
 //! # Basis of the figures
 //!
-//! Measured on the project's 2-core machine with release builds and rounded up:
-//! `shatter bench step` (the 2,000-brick wall: about 1.3 ms a step with joints, 0.5 ms
-//! with clusters, i.e. up to 0.7 µs per fragment and step) and the peak resident set of
-//! `shatter simulate` on grid scenes of 1,000 to 64,000 bricks (about 3 kB per brick with
-//! its body, collider and joints).
+//! Measured with release builds on the project's 2-core machine (CPU time, the machine
+//! shared with other builds) and rounded up. `shatter simulate` of an empty scene runs
+//! 10,000 steps in 10 ms; grid scenes of 20 × 20 × 20 bricks falling and breaking took
+//! 115 ms of CPU a step with clusters and 470 ms with joints (14 and 59 µs per fragment
+//! and step) and peaked at 197 MB and 354 MB (24 and 43 kB per brick). Intact clusters
+//! are far cheaper (`shatter bench step`: 0.7 ms a step for the 2,000-brick wall), so the
+//! time is an upper bound: every fragment moving on its own.
 
-use shatter_geom::budget::{BudgetError, Estimate, Limits, format_count};
+use shatter_geom::budget::{BudgetError, Estimate, Limits, format_count, fragments_at_most};
 
 use crate::material::FractureMethod;
-use crate::object::{FractureSource, ObjectSpec};
+use crate::object::{BondModel, FractureSource, ObjectSpec};
 use crate::scene::Scene;
 
-/// Bytes per simulated fragment: its rigid body, its colliders (convex pieces in `f32`),
-/// its joints or bond state, and the prepared copy of its geometry.
-pub const SIM_BYTES_PER_FRAGMENT: f64 = 4000.0;
-/// Bytes per brick of the `grid` method (a 12-triangle box fragment and its three bonds).
-pub const GRID_BYTES_PER_BRICK: f64 = 1500.0;
+/// Bytes per simulated fragment with clusters: its body, colliders (convex pieces in
+/// `f32`), contacts and bond state, and the prepared copy of its geometry.
+pub const SIM_BYTES_PER_FRAGMENT: f64 = 25_000.0;
+/// Bytes per simulated fragment with joints (its joints and their solver data added).
+pub const SIM_BYTES_PER_FRAGMENT_JOINTS: f64 = 45_000.0;
+/// Bytes per brick of the `grid` method's fracture (a 12-triangle box and its bonds).
+pub const GRID_BYTES_PER_BRICK: f64 = 2_000.0;
 /// Seconds per brick of the `grid` method.
 pub const GRID_SECONDS_PER_BRICK: f64 = 2.0e-6;
 /// Seconds to build one fragment's body and colliders.
 pub const SIM_BUILD_SECONDS_PER_FRAGMENT: f64 = 2.0e-5;
-/// Seconds per step and per fragment (contacts, the solver, bond checks), with joints,
-/// the dearer model.
-pub const SIM_SECONDS_PER_FRAGMENT_STEP: f64 = 1.0e-6;
+/// Seconds per step and per fragment with clusters (contacts, the solver, bond loads).
+pub const SIM_SECONDS_PER_FRAGMENT_STEP: f64 = 1.5e-5;
+/// Seconds per step and per fragment with joints.
+pub const SIM_SECONDS_PER_FRAGMENT_STEP_JOINTS: f64 = 6.0e-5;
 /// Seconds per step whatever the scene holds (the pipeline's fixed cost).
-pub const SIM_SECONDS_PER_STEP: f64 = 2.0e-5;
+pub const SIM_SECONDS_PER_STEP: f64 = 3.0e-6;
 
 /// A scene's estimate, part by part.
 #[derive(Debug, Clone, PartialEq)]
@@ -71,23 +76,34 @@ pub struct ObjectEstimate {
     pub what: String,
     /// Fragments expected.
     pub fragments: f64,
+    /// Its bond model.
+    pub bond_model: BondModel,
     /// Fracture and bodies.
     pub estimate: Estimate,
 }
 
-/// The estimate of simulating `fragments` fragments for `steps` steps.
-pub fn run_estimate(fragments: f64, steps: u64) -> Estimate {
-    let steps = steps as f64;
+/// The estimate of simulating `fragments` fragments bonded by `model` for `steps`
+/// steps (the fixed cost of the steps included).
+pub fn run_estimate(fragments: f64, model: BondModel, steps: u64) -> Estimate {
+    let per_fragment = match model {
+        BondModel::Joints => SIM_SECONDS_PER_FRAGMENT_STEP_JOINTS,
+        BondModel::Clusters => SIM_SECONDS_PER_FRAGMENT_STEP,
+    };
     Estimate {
         bytes: 0.0,
-        seconds: steps * (SIM_SECONDS_PER_STEP + fragments * SIM_SECONDS_PER_FRAGMENT_STEP),
+        seconds: steps as f64 * (SIM_SECONDS_PER_STEP + fragments * per_fragment),
     }
 }
 
-/// The estimate of building the bodies of `fragments` fragments.
-pub fn bodies_estimate(fragments: f64) -> Estimate {
+/// The estimate of building (and holding) the bodies of `fragments` fragments bonded by
+/// `model`.
+pub fn bodies_estimate(fragments: f64, model: BondModel) -> Estimate {
+    let bytes = match model {
+        BondModel::Joints => SIM_BYTES_PER_FRAGMENT_JOINTS,
+        BondModel::Clusters => SIM_BYTES_PER_FRAGMENT,
+    };
     Estimate {
-        bytes: fragments * SIM_BYTES_PER_FRAGMENT,
+        bytes: fragments * bytes,
         seconds: fragments * SIM_BUILD_SECONDS_PER_FRAGMENT,
     }
 }
@@ -106,8 +122,10 @@ fn mesh_size(source: &FractureSource) -> (u64, u64) {
     })
 }
 
-/// The estimate of one object: its fracture and its bodies.
-pub fn object_estimate(key: &str, spec: &ObjectSpec) -> ObjectEstimate {
+/// The estimate of one object: its fracture and its bodies; `world_model` is the bond
+/// model of objects that do not choose one.
+pub fn object_estimate(key: &str, spec: &ObjectSpec, world_model: BondModel) -> ObjectEstimate {
+    let bond_model = spec.bond_model.unwrap_or(world_model);
     let params = match &spec.source {
         FractureSource::Prebuilt(f) => {
             let n = f.fragments.len() as f64;
@@ -115,7 +133,8 @@ pub fn object_estimate(key: &str, spec: &ObjectSpec) -> ObjectEstimate {
                 key: key.to_string(),
                 what: format!("{key}: {} fragments", format_count(n as u64)),
                 fragments: n,
-                estimate: bodies_estimate(n),
+                bond_model,
+                estimate: bodies_estimate(n, bond_model),
             };
         }
         FractureSource::Shape { params, .. } | FractureSource::MeshFile { params, .. } => params,
@@ -152,7 +171,7 @@ pub fn object_estimate(key: &str, spec: &ObjectSpec) -> ObjectEstimate {
                     params.random_vertices,
                     format_count(points)
                 ),
-                points as f64 * shatter_geom::budget::TETRAHEDRA_PER_POINT,
+                fragments_at_most(points as f64 * shatter_geom::budget::TETRAHEDRA_PER_POINT),
                 Estimate::tetra_fracture(points),
             )
         }
@@ -162,12 +181,12 @@ pub fn object_estimate(key: &str, spec: &ObjectSpec) -> ObjectEstimate {
                 params.pieces,
                 format_count(u64::from(params.pieces))
             ),
-            f64::from(params.pieces),
+            fragments_at_most(f64::from(params.pieces)),
             Estimate::voronoi_fracture(u64::from(params.pieces), triangles),
         ),
         FractureMethod::Slice => (
             format!("{key}.pieces = {}: slice planes", params.pieces),
-            shatter_geom::budget::slice_pieces_at_most(u64::from(params.pieces)),
+            fragments_at_most(shatter_geom::budget::slice_pieces(u64::from(params.pieces))),
             Estimate::slice_fracture(u64::from(params.pieces), triangles),
         ),
     };
@@ -175,7 +194,8 @@ pub fn object_estimate(key: &str, spec: &ObjectSpec) -> ObjectEstimate {
         key: key.to_string(),
         what,
         fragments,
-        estimate: fracture + bodies_estimate(fragments),
+        bond_model,
+        estimate: fracture + bodies_estimate(fragments, bond_model),
     }
 }
 
@@ -192,20 +212,31 @@ impl Scene {
         }
     }
 
-    /// The estimate of building this scene and running it for `steps` steps.
+    /// The estimate of building this scene and running it for `steps` steps (the
+    /// process's own memory included).
     pub fn estimate(&self, steps: u64) -> SceneEstimate {
+        let world_model = self.settings.bond_model;
         let objects: Vec<ObjectEstimate> = self
             .objects
             .iter()
             .enumerate()
-            .map(|(i, o)| object_estimate(&format!("objects[{i}]"), o))
+            .map(|(i, o)| object_estimate(&format!("objects[{i}]"), o, world_model))
             .collect();
-        let fragments: f64 = objects.iter().map(|o| o.fragments).sum::<f64>()
-            + self.projectiles.len() as f64;
-        let run = run_estimate(fragments, steps);
+        let fragments: f64 =
+            objects.iter().map(|o| o.fragments).sum::<f64>() + self.projectiles.len() as f64;
+        let run = objects.iter().fold(
+            run_estimate(self.projectiles.len() as f64, BondModel::Clusters, steps),
+            |sum, o| {
+                let mut e = run_estimate(o.fragments, o.bond_model, steps);
+                // The steps' fixed cost is counted once.
+                e.seconds -= steps as f64 * SIM_SECONDS_PER_STEP;
+                sum + e
+            },
+        );
         let total = objects
             .iter()
-            .fold(run, |sum, o| sum + o.estimate);
+            .fold(run, |sum, o| sum + o.estimate)
+            .with_process();
         SceneEstimate {
             objects,
             fragments,
@@ -264,7 +295,10 @@ mod tests {
     fn refusal(toml: &str, steps: Option<u64>) -> String {
         let scene = Scene::parse(toml).unwrap();
         let steps = scene.steps(steps, None);
-        scene.check_budget(steps, &limits()).unwrap_err().to_string()
+        scene
+            .check_budget(steps, &limits())
+            .unwrap_err()
+            .to_string()
     }
 
     #[test]
@@ -282,24 +316,42 @@ mod tests {
 
     #[test]
     fn huge_counts_are_refused_for_memory() {
-        let e = refusal("[[objects]]\nmethod = \"voronoi\"\npieces = 10000000\n", Some(1));
-        assert!(e.starts_with("objects[0].pieces = 10000000: 10,000,000 Voronoi cells need"), "{e}");
+        let e = refusal(
+            "[[objects]]\nmethod = \"voronoi\"\npieces = 10000000\n",
+            Some(1),
+        );
+        assert!(
+            e.starts_with("objects[0].pieces = 10000000: 10,000,000 Voronoi cells need"),
+            "{e}"
+        );
         let e = refusal(
             "[[objects]]\nmethod = \"tetra\"\nrandom_vertices = 10000000\n",
             Some(1),
         );
-        assert!(e.starts_with("objects[0].random_vertices = 10000000: a tetra fracture of 10,000,024 points need"), "{e}");
+        assert!(
+            e.starts_with(
+                "objects[0].random_vertices = 10000000: a tetra fracture of 10,000,024 points need"
+            ),
+            "{e}"
+        );
     }
 
     #[test]
     fn tiny_steps_and_long_runs_are_refused_for_time() {
         let e = refusal("[world]\ndt = 1e-9\n", None);
         // dt is an f32: 1e-9 is 9.99999972e-10, so the 3 s are 3,000,000,085 steps.
-        assert!(e.starts_with("3,000,000,085 steps of 0.000000001 s with 0 fragments would take about"), "{e}");
+        assert!(
+            e.starts_with("3,000,000,085 steps of 0.000000001 s with 0 fragments would take about"),
+            "{e}"
+        );
         assert!(e.ends_with("; the limit is 1 hour"), "{e}");
         let e = refusal("[world]\nseconds = 1e9\n", None);
-        assert!(e.starts_with("60,000,000,000 steps"), "{e}");
-        assert!(e.contains("years"), "{e}");
+        // 1e9 s at 1/60 s (an f32: 0.016666668) are 59,999,996,871 steps.
+        assert!(
+            e.starts_with("59,999,996,871 steps of 0.016666668 s"),
+            "{e}"
+        );
+        assert!(e.contains("days"), "{e}");
     }
 
     #[test]

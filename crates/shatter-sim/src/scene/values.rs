@@ -135,9 +135,7 @@ pub fn opt_f32<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f32>, D::Error>
 }
 
 /// An optional `f32` with its place in the file.
-pub fn opt_spanned_f32<'de, D: Deserializer<'de>>(
-    d: D,
-) -> Result<Option<Spanned<f32>>, D::Error> {
+pub fn opt_spanned_f32<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Spanned<f32>>, D::Error> {
     Ok(Option::<Spanned<StrictF32>>::deserialize(d)?.map(|s| respan(s, |v| v.0)))
 }
 
@@ -204,7 +202,10 @@ mod tests {
             parse("g = [1, 2, 3, 4]").unwrap_err(),
             "expected 3 integers [x, y, z], found 4"
         );
-        assert_eq!(parse("g = [1, 2, 3]").unwrap().g.unwrap().into_inner(), [1, 2, 3]);
+        assert_eq!(
+            parse("g = [1, 2, 3]").unwrap().g.unwrap().into_inner(),
+            [1, 2, 3]
+        );
         assert!(parse("v = 3").is_err());
         assert!(parse("").unwrap().v.is_none());
     }
@@ -216,20 +217,30 @@ mod tests {
             e,
             "1e300 is too large for the simulation's 32-bit floats (largest magnitude 3.4e38)"
         );
-        assert!(parse("v = [0, -1e39, 0]").unwrap_err().contains("too large"));
+        assert!(
+            parse("v = [0, -1e39, 0]")
+                .unwrap_err()
+                .contains("too large")
+        );
         assert!(parse("x = 1e-45").unwrap_err().contains("too small"));
         let x = parse("x = 2").unwrap().x.unwrap();
         assert_eq!(*x.get_ref(), 2.0);
         assert_eq!(x.span(), 4..5);
         // Infinities reach the key's own check, which names them.
-        assert_eq!(*parse("x = inf").unwrap().x.unwrap().get_ref(), f32::INFINITY);
+        assert_eq!(
+            *parse("x = inf").unwrap().x.unwrap().get_ref(),
+            f32::INFINITY
+        );
     }
 
     #[test]
     fn narrowing_keeps_everything_f32_can_hold() {
         assert_eq!(narrow_to_f32(3.0e38), Ok(3.0e38));
         assert_eq!(narrow_to_f32(-2.0e-38), Ok(-2.0e-38));
-        assert!(matches!(narrow_to_f32(-4e38), Err(NarrowError::TooLarge(_))));
+        assert!(matches!(
+            narrow_to_f32(-4e38),
+            Err(NarrowError::TooLarge(_))
+        ));
         assert!(narrow_to_f32(f64::NAN).unwrap().is_nan());
     }
 }
