@@ -38,8 +38,8 @@ use crate::error::CliError;
 struct Cli {
     #[command(subcommand)]
     command: Command,
-    /// Run requests that the estimate says need more memory than this machine has or
-    /// more than an hour (see docs/cli.md, "Resource limits").
+    /// Run requests that the estimate says need more than 80% of this machine's memory
+    /// or more than an hour (see docs/cli.md, "Resource limits").
     #[arg(long, global = true)]
     no_limits: bool,
 }

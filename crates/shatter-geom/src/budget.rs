@@ -9,7 +9,7 @@
 //! let limits = Limits { memory_bytes: Some(24e9 as u64), seconds: None, memory_source: "test" };
 //! let huge = Estimate::delaunay(3_000_000_000);
 //! let err = limits.check("3,000,000,000 points", &huge).unwrap_err();
-//! assert!(err.to_string().starts_with("3,000,000,000 points need about 850 GB"), "{err}");
+//! assert!(err.to_string().starts_with("3,000,000,000 points need about 846 GB"), "{err}");
 //! assert!(limits.check("1,000 points", &Estimate::delaunay(1000)).is_ok());
 //! ```
 //!
@@ -180,13 +180,19 @@ fn threads() -> f64 {
 /// Limits to check estimates against.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Limits {
-    /// Memory a computation may use; `None`: no memory limit.
+    /// The machine's memory; a computation may use [`USABLE_MEMORY_FRACTION`] of it.
+    /// `None`: no memory limit.
     pub memory_bytes: Option<u64>,
     /// Wall-clock seconds a computation may take; `None`: no time limit.
     pub seconds: Option<f64>,
     /// Where the memory figure comes from ("MemTotal in /proc/meminfo", ...).
     pub memory_source: &'static str,
 }
+
+/// The share of the machine's memory a request may be estimated at: the rest is left to
+/// the system and the other processes, and covers the estimates' error (within a factor
+/// of two).
+pub const USABLE_MEMORY_FRACTION: f64 = 0.8;
 
 /// The default time limit of the command line: one hour of estimated work.
 pub const DEFAULT_SECONDS_LIMIT: f64 = 3600.0;
@@ -215,7 +221,7 @@ impl Limits {
     /// "3,000,000,000 points"), how much it needs and how much there is.
     pub fn check(&self, what: &str, estimate: &Estimate) -> Result<(), BudgetError> {
         if let Some(limit) = self.memory_bytes
-            && estimate.bytes > limit as f64
+            && estimate.bytes > limit as f64 * USABLE_MEMORY_FRACTION
         {
             return Err(BudgetError::Memory {
                 what: what.to_string(),
@@ -242,9 +248,10 @@ impl Limits {
 pub enum BudgetError {
     /// More memory than the machine has.
     #[error(
-        "{what} need about {}; this machine has {} ({limit_source})",
+        "{what} need about {}; this machine has {} ({limit_source}), of which a run may use {}",
         format_bytes(*needs_bytes),
-        format_bytes(*limit_bytes as f64)
+        format_bytes(*limit_bytes as f64),
+        format_bytes(*limit_bytes as f64 * USABLE_MEMORY_FRACTION)
     )]
     Memory {
         /// What was asked for.
@@ -429,7 +436,7 @@ mod tests {
             .unwrap_err();
         let text = e.to_string();
         assert!(
-            text.starts_with("3,000,000,000 points need about 850 GB"),
+            text.starts_with("3,000,000,000 points need about 846 GB"),
             "{text}"
         );
         assert!(
@@ -441,6 +448,21 @@ mod tests {
         };
         // 3e9 points at 244 bytes each (bench delaunay) and their 24 bytes.
         assert!((8.0e11..9.0e11).contains(&needs_bytes), "{needs_bytes}");
+    }
+
+    #[test]
+    fn a_request_is_refused_above_the_usable_share_of_the_memory() {
+        let l = limits(10.0, None);
+        let at = |gb: f64| Estimate {
+            bytes: gb * 1e9,
+            seconds: 0.0,
+        };
+        assert!(l.check("it", &at(7.9)).is_ok());
+        let e = l.check("it", &at(9.0)).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "it need about 9 GB; this machine has 10 GB (test), of which a run may use 8 GB"
+        );
     }
 
     #[test]

@@ -8,12 +8,13 @@
 //! use shatter_geom::budget::Limits;
 //! use shatter_sim::scene::Scene;
 //!
-//! let scene = Scene::parse("[world]\ndt = 1e-6\nseconds = 1e6\n")?;
+//! // 2^-7 s steps (exact in f32) for 1e9 s.
+//! let scene = Scene::parse("[world]\ndt = 0.0078125\nseconds = 1e9\n")?;
 //! let steps = scene.steps(None, None);
-//! assert_eq!(steps, 1_000_000_000_000);
+//! assert_eq!(steps, 128_000_000_000);
 //! let limits = Limits { memory_bytes: Some(24_000_000_000), seconds: Some(3600.0), memory_source: "test" };
 //! let err = scene.check_budget(steps, &limits).unwrap_err();
-//! assert!(err.to_string().contains("1,000,000,000,000 steps"), "{err}");
+//! assert!(err.to_string().starts_with("128,000,000,000 steps"), "{err}");
 //! # Ok::<(), shatter_sim::SimError>(())
 //! ```
 //!
