@@ -222,7 +222,7 @@ fn scenes_too_big_for_the_machine_are_refused_before_building() {
         (
             "seconds.toml",
             "[world]\nseconds = 1e9\n\n[[objects]]\nshape = \"cube\"\n",
-            "steps of 0.016666668 s with 32 fragments would take about 2",
+            "steps of 0.016666668 s with 32 fragments would take about 335 days",
         ),
     ];
     for (name, text, message) in cases {
