@@ -1,5 +1,6 @@
 //! Ctrl-C stops a long run cleanly: a message, exit code 130, and no output file (not
 //! even a partial or temporary one).
+#![allow(clippy::unwrap_used)]
 
 use std::path::Path;
 use std::process::{Command, Stdio};

@@ -1,6 +1,7 @@
 //! Requests too big for the machine are refused before any work, with the estimate; the
 //! estimates are within their stated factor of real runs; over-long and out-of-range
 //! values are refused with messages naming the key.
+#![allow(clippy::unwrap_used)]
 
 mod common;
 

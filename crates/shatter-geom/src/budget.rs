@@ -342,7 +342,7 @@ pub fn format_count(n: u64) -> String {
     let digits = n.to_string();
     let mut out = String::with_capacity(digits.len() + digits.len() / 3);
     for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
             out.push(',');
         }
         out.push(c);
@@ -374,7 +374,8 @@ pub fn format_duration(seconds: f64) -> String {
         (365.25 * 86_400.0, "years"),
         (f64::INFINITY, ""),
     ];
-    if !(seconds >= 60.0) {
+    // NaN is printed as seconds too.
+    if seconds.is_nan() || seconds < 60.0 {
         return format!("{} seconds", significant(seconds.max(0.0)));
     }
     let mut unit = (60.0, "minutes");
@@ -419,6 +420,7 @@ impl fmt::Display for Estimate {
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::unwrap_used)]
     use super::*;
 
     fn limits(gb: f64, seconds: Option<f64>) -> Limits {

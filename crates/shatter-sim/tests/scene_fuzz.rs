@@ -1,6 +1,7 @@
 //! Parser fuzzing for scene files: random bytes and mutated copies of the shipped scenes.
 //! `Scene::parse` must return an error or a scene whose every value is valid, and never
 //! panic; the resource estimate of whatever it accepts must not panic either.
+#![allow(clippy::unwrap_used)]
 
 use proptest::prelude::*;
 use shatter_sim::scene::Scene;
