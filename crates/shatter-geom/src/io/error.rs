@@ -49,10 +49,12 @@ pub enum MeshIoError {
         message: String,
     },
     /// The file holds no triangles.
-    #[error("{path}: no triangles in the file")]
+    #[error("{path}: no triangles in the file{found}")]
     NoTriangles {
         /// The file.
         path: PathBuf,
+        /// What the reader skipped instead, as `" (it skipped ...)"`, or empty.
+        found: String,
     },
     /// A vertex has a NaN or infinite coordinate.
     #[error("{path}: vertex {vertex} has a non-finite coordinate")]

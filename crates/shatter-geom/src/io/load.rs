@@ -230,8 +230,20 @@ fn parse(
         MeshFormat::Gltf | MeshFormat::Glb => gltf::read_gltf(bytes, &mut cx)?,
     };
     if model.mesh.triangles.is_empty() {
+        let prefix = format!("{}: ", path.display());
+        let skipped: Vec<&str> = cx
+            .warnings
+            .iter()
+            .filter(|w| w.kind == WarningKind::SkippedElements)
+            .map(|w| w.message.strip_prefix(&prefix).unwrap_or(&w.message))
+            .collect();
         return Err(MeshIoError::NoTriangles {
             path: path.to_path_buf(),
+            found: if skipped.is_empty() {
+                String::new()
+            } else {
+                format!(" ({})", skipped.join("; "))
+            },
         });
     }
     if let Some(v) = model.mesh.positions.iter().position(|p| !p.is_finite()) {
