@@ -30,7 +30,9 @@ pub fn add_mesh(name: String, bytes: Vec<u8>) -> String {
             files.insert(&name, bytes);
             return String::new();
         }
-        return format!("'{name}': expected an .obj, .stl, .gltf or .glb file (or a .bin, .mtl, .png or .jpg it uses)");
+        return format!(
+            "'{name}': expected an .obj, .stl, .gltf or .glb file (or a .bin, .mtl, .png or .jpg it uses)"
+        );
     };
     if let Err(e) = shatter_geom::io::parse_model_with(&bytes, format, &name, files) {
         return e.to_string();

@@ -34,37 +34,205 @@ struct Expect {
 }
 
 const LOADS: &[Expect] = &[
-    Expect { file: "obj/spider/spider.obj", triangles: 1368, materials: 4, uv: true, color: false, images: 4 },
-    Expect { file: "obj/WusonOBJ.obj", triangles: 3732, materials: 1, uv: true, color: false, images: 0 },
-    Expect { file: "obj/regr01.obj", triangles: 2710, materials: 12, uv: true, color: false, images: 0 },
-    Expect { file: "obj/box.obj", triangles: 12, materials: 1, uv: false, color: false, images: 0 },
+    Expect {
+        file: "obj/spider/spider.obj",
+        triangles: 1368,
+        materials: 4,
+        uv: true,
+        color: false,
+        images: 4,
+    },
+    Expect {
+        file: "obj/WusonOBJ.obj",
+        triangles: 3732,
+        materials: 1,
+        uv: true,
+        color: false,
+        images: 0,
+    },
+    Expect {
+        file: "obj/regr01.obj",
+        triangles: 2710,
+        materials: 12,
+        uv: true,
+        color: false,
+        images: 0,
+    },
+    Expect {
+        file: "obj/box.obj",
+        triangles: 12,
+        materials: 1,
+        uv: false,
+        color: false,
+        images: 0,
+    },
     // A closed box of six quads, with `l` and `p` elements beside them.
-    Expect { file: "obj/testmixed.obj", triangles: 12, materials: 1, uv: false, color: false, images: 0 },
-    Expect { file: "obj/concave_polygon.obj", triangles: 64, materials: 1, uv: false, color: false, images: 0 },
-    Expect { file: "obj/cube_with_vertexcolors.obj", triangles: 12, materials: 1, uv: false, color: true, images: 0 },
-    Expect { file: "obj/cube_usemtl.obj", triangles: 12, materials: 3, uv: false, color: false, images: 0 },
-    Expect { file: "obj/box_UTF16BE.obj", triangles: 12, materials: 1, uv: false, color: false, images: 0 },
-    Expect { file: "stl/3DSMaxExport.STL", triangles: 2000, materials: 1, uv: false, color: false, images: 0 },
-    Expect { file: "stl/sphereWithHole.stl", triangles: 285, materials: 1, uv: false, color: false, images: 0 },
+    Expect {
+        file: "obj/testmixed.obj",
+        triangles: 12,
+        materials: 1,
+        uv: false,
+        color: false,
+        images: 0,
+    },
+    Expect {
+        file: "obj/concave_polygon.obj",
+        triangles: 64,
+        materials: 1,
+        uv: false,
+        color: false,
+        images: 0,
+    },
+    Expect {
+        file: "obj/cube_with_vertexcolors.obj",
+        triangles: 12,
+        materials: 1,
+        uv: false,
+        color: true,
+        images: 0,
+    },
+    Expect {
+        file: "obj/cube_usemtl.obj",
+        triangles: 12,
+        materials: 3,
+        uv: false,
+        color: false,
+        images: 0,
+    },
+    Expect {
+        file: "obj/box_UTF16BE.obj",
+        triangles: 12,
+        materials: 1,
+        uv: false,
+        color: false,
+        images: 0,
+    },
+    Expect {
+        file: "stl/3DSMaxExport.STL",
+        triangles: 2000,
+        materials: 1,
+        uv: false,
+        color: false,
+        images: 0,
+    },
+    Expect {
+        file: "stl/sphereWithHole.stl",
+        triangles: 285,
+        materials: 1,
+        uv: false,
+        color: false,
+        images: 0,
+    },
     // Blender imports 1312 (it drops degenerate and duplicate faces); the header and the
     // size (84 + 50 × 1368 = 68484 bytes) say 1368, which is what is read.
-    Expect { file: "stl/Spider_binary.stl", triangles: 1368, materials: 1, uv: false, color: false, images: 0 },
-    Expect { file: "stl/triangle_with_two_solids.stl", triangles: 2, materials: 1, uv: false, color: false, images: 0 },
-    Expect { file: "stl/gearwheel.bin.stl", triangles: 2444, materials: 1, uv: false, color: false, images: 0 },
-    Expect { file: "gltf/BoxTextured/BoxTextured.gltf", triangles: 12, materials: 1, uv: true, color: false, images: 1 },
-    Expect { file: "gltf/BoxTextured.glb", triangles: 12, materials: 1, uv: true, color: false, images: 1 },
-    Expect { file: "gltf/BoxTextured_embedded.gltf", triangles: 12, materials: 1, uv: true, color: false, images: 1 },
+    Expect {
+        file: "stl/Spider_binary.stl",
+        triangles: 1368,
+        materials: 1,
+        uv: false,
+        color: false,
+        images: 0,
+    },
+    Expect {
+        file: "stl/triangle_with_two_solids.stl",
+        triangles: 2,
+        materials: 1,
+        uv: false,
+        color: false,
+        images: 0,
+    },
+    Expect {
+        file: "stl/gearwheel.bin.stl",
+        triangles: 2444,
+        materials: 1,
+        uv: false,
+        color: false,
+        images: 0,
+    },
+    Expect {
+        file: "gltf/BoxTextured/BoxTextured.gltf",
+        triangles: 12,
+        materials: 1,
+        uv: true,
+        color: false,
+        images: 1,
+    },
+    Expect {
+        file: "gltf/BoxTextured.glb",
+        triangles: 12,
+        materials: 1,
+        uv: true,
+        color: false,
+        images: 1,
+    },
+    Expect {
+        file: "gltf/BoxTextured_embedded.gltf",
+        triangles: 12,
+        materials: 1,
+        uv: true,
+        color: false,
+        images: 1,
+    },
     // Blender imports 110342 (it drops degenerate and duplicate faces); the document's
     // 67 mesh instances in the default scene hold 121496 (summed over each instanced
     // primitive's index count / 3 by a 20-line Python walk of the GLB's JSON).
-    Expect { file: "gltf/engine/2CylinderEngine.glb", triangles: 121496, materials: 34, uv: false, color: false, images: 0 },
+    Expect {
+        file: "gltf/engine/2CylinderEngine.glb",
+        triangles: 121496,
+        materials: 34,
+        uv: false,
+        color: false,
+        images: 0,
+    },
     // Blender: 2 triangles each (strip, fan, list, strip and fan with indices, bytes).
-    Expect { file: "gltf/primitive_modes/Mesh_PrimitiveMode_04.gltf", triangles: 2, materials: 1, uv: false, color: false, images: 0 },
-    Expect { file: "gltf/primitive_modes/Mesh_PrimitiveMode_05.gltf", triangles: 2, materials: 1, uv: false, color: false, images: 0 },
-    Expect { file: "gltf/primitive_modes/Mesh_PrimitiveMode_06.gltf", triangles: 2, materials: 1, uv: false, color: false, images: 0 },
-    Expect { file: "gltf/primitive_modes/Mesh_PrimitiveMode_11.gltf", triangles: 2, materials: 1, uv: false, color: false, images: 0 },
-    Expect { file: "gltf/primitive_modes/Mesh_PrimitiveMode_12.gltf", triangles: 2, materials: 1, uv: false, color: false, images: 0 },
-    Expect { file: "gltf/primitive_modes/Mesh_PrimitiveMode_14.gltf", triangles: 2, materials: 1, uv: false, color: false, images: 0 },
+    Expect {
+        file: "gltf/primitive_modes/Mesh_PrimitiveMode_04.gltf",
+        triangles: 2,
+        materials: 1,
+        uv: false,
+        color: false,
+        images: 0,
+    },
+    Expect {
+        file: "gltf/primitive_modes/Mesh_PrimitiveMode_05.gltf",
+        triangles: 2,
+        materials: 1,
+        uv: false,
+        color: false,
+        images: 0,
+    },
+    Expect {
+        file: "gltf/primitive_modes/Mesh_PrimitiveMode_06.gltf",
+        triangles: 2,
+        materials: 1,
+        uv: false,
+        color: false,
+        images: 0,
+    },
+    Expect {
+        file: "gltf/primitive_modes/Mesh_PrimitiveMode_11.gltf",
+        triangles: 2,
+        materials: 1,
+        uv: false,
+        color: false,
+        images: 0,
+    },
+    Expect {
+        file: "gltf/primitive_modes/Mesh_PrimitiveMode_12.gltf",
+        triangles: 2,
+        materials: 1,
+        uv: false,
+        color: false,
+        images: 0,
+    },
+    Expect {
+        file: "gltf/primitive_modes/Mesh_PrimitiveMode_14.gltf",
+        triangles: 2,
+        materials: 1,
+        uv: false,
+        color: false,
+        images: 0,
+    },
 ];
 
 /// Files refused, and what the message must say.
@@ -73,9 +241,18 @@ const REFUSED: &[(&str, &str)] = &[
         "gltf1/BoxTextured_v1.gltf",
         "glTF 1.0 is not supported (this file says version 1.0); convert it to glTF 2.0",
     ),
-    ("gltf/2CylinderEngine.gltf", "requires KHR_draco_mesh_compression"),
-    ("gltf/primitive_modes/Mesh_PrimitiveMode_01.gltf", "no triangles in the file"),
-    ("obj/number_formats.obj", "line 11: '3.1+e2' is not a number"),
+    (
+        "gltf/2CylinderEngine.gltf",
+        "requires KHR_draco_mesh_compression",
+    ),
+    (
+        "gltf/primitive_modes/Mesh_PrimitiveMode_01.gltf",
+        "no triangles in the file",
+    ),
+    (
+        "obj/number_formats.obj",
+        "line 11: '3.1+e2' is not a number",
+    ),
 ];
 
 #[test]
@@ -110,14 +287,22 @@ fn refused_corpus_files_say_why() {
     for (file, message) in REFUSED {
         let err = io::load_model(corpus(file)).unwrap_err().to_string();
         assert!(err.contains(message), "{file}: {err}");
-        assert!(err.contains(Path::new(file).file_name().unwrap().to_str().unwrap()), "{err}");
+        assert!(
+            err.contains(Path::new(file).file_name().unwrap().to_str().unwrap()),
+            "{err}"
+        );
     }
 }
 
 #[test]
 fn the_spider_gets_its_textures_through_windows_paths() {
     let loaded = io::load_model(corpus("obj/spider/spider.obj")).unwrap();
-    let names: Vec<&str> = loaded.model.materials.iter().map(|m| m.name.as_str()).collect();
+    let names: Vec<&str> = loaded
+        .model
+        .materials
+        .iter()
+        .map(|m| m.name.as_str())
+        .collect();
     // In order of first use in the file.
     assert_eq!(names, ["HLeibTex", "Skin", "BeinTex", "Augentex"]);
     let skin = &loaded.model.materials[1];
@@ -137,7 +322,8 @@ fn the_spider_gets_its_textures_through_windows_paths() {
 #[test]
 fn tolerated_files_warn_with_counts() {
     let mixed = io::load_model(corpus("obj/testmixed.obj")).unwrap();
-    let kinds: Vec<(WarningKind, usize)> = mixed.warnings.iter().map(|w| (w.kind, w.count)).collect();
+    let kinds: Vec<(WarningKind, usize)> =
+        mixed.warnings.iter().map(|w| (w.kind, w.count)).collect();
     // 6 `l` and 6 `p` statements; `usemtl Default` with no material library.
     assert_eq!(
         kinds,
@@ -147,7 +333,11 @@ fn tolerated_files_warn_with_counts() {
             (WarningKind::UnknownMaterial, 1)
         ]
     );
-    assert!(mixed.warnings[1].message.ends_with("skipped 6 point elements (first at line 23)"));
+    assert!(
+        mixed.warnings[1]
+            .message
+            .ends_with("skipped 6 point elements (first at line 23)")
+    );
     let modes = io::load_model(corpus("gltf/primitive_modes/Mesh_PrimitiveMode_04.gltf")).unwrap();
     assert!(modes.warnings.is_empty(), "{:?}", modes.warnings);
 }
@@ -192,16 +382,22 @@ fn every_corpus_model_fractures_by_every_method() {
                 planes: None,
             },
         ] {
-            let params = FractureParams {
-                method,
-                seed: 1,
-            };
-            let result = fracture::fracture(&mesh, &params).unwrap_or_else(|err| panic!("{}: {err}", e.file));
+            let params = FractureParams { method, seed: 1 };
+            let result = fracture::fracture(&mesh, &params)
+                .unwrap_or_else(|err| panic!("{}: {err}", e.file));
             let total: f64 = result.fragments.iter().map(|f| f.mesh.volume()).sum();
             let solid = mesh.volume();
-            assert!((total - solid).abs() <= 1e-6 * solid.abs(), "{}: {total} vs {solid}", e.file);
+            assert!(
+                (total - solid).abs() <= 1e-6 * solid.abs(),
+                "{}: {total} vs {solid}",
+                e.file
+            );
             for f in &result.fragments {
-                assert!(f.mesh.check().is_solid(), "{}: a fragment is not a closed 2-manifold", e.file);
+                assert!(
+                    f.mesh.check().is_solid(),
+                    "{}: a fragment is not a closed 2-manifold",
+                    e.file
+                );
             }
             // UVs on every fragment and interior UVs continuous across bonds: to be
             // asserted on the fragments' attributes once the kernel carries them.

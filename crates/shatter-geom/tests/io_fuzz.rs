@@ -93,9 +93,39 @@ fn mutate(bytes: &[u8], mutations: &[Mutation]) -> Vec<u8> {
 /// Text-level mutations that matter to OBJ and MTL: numbers, indices, keywords.
 fn text_token() -> impl Strategy<Value = &'static str> {
     prop::sample::select(vec![
-        "nan", "inf", "-0", "1e999", ".5", "1.", "+1", "0", "-1", "-99999", "4294967296",
-        "99999999999999999999", "/", "//", "1/2/3", "f", "v", "vt", "vn", "l", "p", "usemtl",
-        "mtllib", "newmtl", "map_Kd", "-bm", "\\", "\r", "\n", "\u{FEFF}", "#", " ", "\t",
+        "nan",
+        "inf",
+        "-0",
+        "1e999",
+        ".5",
+        "1.",
+        "+1",
+        "0",
+        "-1",
+        "-99999",
+        "4294967296",
+        "99999999999999999999",
+        "/",
+        "//",
+        "1/2/3",
+        "f",
+        "v",
+        "vt",
+        "vn",
+        "l",
+        "p",
+        "usemtl",
+        "mtllib",
+        "newmtl",
+        "map_Kd",
+        "-bm",
+        "\\",
+        "\r",
+        "\n",
+        "\u{FEFF}",
+        "#",
+        " ",
+        "\t",
     ])
 }
 
@@ -181,19 +211,25 @@ fn json_value() -> impl Strategy<Value = Value> {
 fn box_gltf() -> (Value, MemoryFiles) {
     let json: Value = serde_json::from_slice(&corpus("gltf/BoxTextured/BoxTextured.gltf")).unwrap();
     let files = MemoryFiles::new();
-    files.insert("BoxTextured0.bin", corpus("gltf/BoxTextured/BoxTextured0.bin"));
-    files.insert("CesiumLogoFlat.png", corpus("gltf/BoxTextured/CesiumLogoFlat.png"));
+    files.insert(
+        "BoxTextured0.bin",
+        corpus("gltf/BoxTextured/BoxTextured0.bin"),
+    );
+    files.insert(
+        "CesiumLogoFlat.png",
+        corpus("gltf/BoxTextured/CesiumLogoFlat.png"),
+    );
     (json, files)
 }
 
 /// A GLB of `json` with `bin` as its binary chunk.
 fn glb(json: &Value, bin: &[u8]) -> Vec<u8> {
     let mut j = serde_json::to_vec(json).unwrap();
-    while j.len() % 4 != 0 {
+    while !j.len().is_multiple_of(4) {
         j.push(b' ');
     }
     let mut b = bin.to_vec();
-    while b.len() % 4 != 0 {
+    while !b.len().is_multiple_of(4) {
         b.push(0);
     }
     let total = 12 + 8 + j.len() + 8 + b.len();
@@ -311,23 +347,45 @@ fn malformed_gltf_accessors_are_errors_not_panics() {
     let position = base["meshes"][0]["primitives"][0]["attributes"]["POSITION"]
         .as_u64()
         .unwrap() as usize;
-    let indices = base["meshes"][0]["primitives"][0]["indices"].as_u64().unwrap() as usize;
+    let indices = base["meshes"][0]["primitives"][0]["indices"]
+        .as_u64()
+        .unwrap() as usize;
     let view = base["accessors"][position]["bufferView"].as_u64().unwrap() as usize;
 
-    let err = with("/meshes/0/primitives/0/attributes/POSITION", Value::from(99));
-    assert!(err.contains("POSITION names accessor 99, but the file has 4 accessors"), "{err}");
+    let err = with(
+        "/meshes/0/primitives/0/attributes/POSITION",
+        Value::from(99),
+    );
+    assert!(
+        err.contains("POSITION names accessor 99, but the file has 4 accessors"),
+        "{err}"
+    );
 
     // `indices` naming a float VEC3 accessor (the positions).
     let err = with("/meshes/0/primitives/0/indices", Value::from(position));
     assert!(err.contains("indices (accessor"), "{err}");
-    assert!(err.contains("is a VEC3 of FLOAT; expected SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT, UNSIGNED_INT"), "{err}");
+    assert!(
+        err.contains(
+            "is a VEC3 of FLOAT; expected SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT, UNSIGNED_INT"
+        ),
+        "{err}"
+    );
 
     let err = with(&format!("/bufferViews/{view}/byteStride"), Value::from(4));
-    assert!(err.contains("has byteStride 4, smaller than the 12-byte element"), "{err}");
+    assert!(
+        err.contains("has byteStride 4, smaller than the 12-byte element"),
+        "{err}"
+    );
 
-    let err = with(&format!("/accessors/{indices}/count"), Value::from(1u64 << 40));
+    let err = with(
+        &format!("/accessors/{indices}/count"),
+        Value::from(1u64 << 40),
+    );
     assert!(err.contains("1099511627776 elements"), "{err}");
-    let err = with(&format!("/accessors/{position}/count"), Value::from(u64::MAX));
+    let err = with(
+        &format!("/accessors/{position}/count"),
+        Value::from(u64::MAX),
+    );
     assert!(err.contains("elements of 12 bytes"), "{err}");
     let err = with("/buffers/0/uri", Value::from("nowhere.bin"));
     assert!(err.contains("cannot read nowhere.bin"), "{err}");
@@ -339,7 +397,11 @@ fn a_binary_stl_announcing_four_billion_triangles_reads_the_one_it_holds() {
     bytes[80..84].copy_from_slice(&u32::MAX.to_le_bytes());
     let loaded = io::parse_model(&bytes, MeshFormat::Stl, "huge.stl").unwrap();
     assert_eq!(loaded.model.mesh.triangles.len(), 1);
-    assert!(loaded.warnings[0].message.contains("announces 4294967295 triangles"));
+    assert!(
+        loaded.warnings[0]
+            .message
+            .contains("announces 4294967295 triangles")
+    );
 }
 
 #[test]

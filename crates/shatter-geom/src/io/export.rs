@@ -133,7 +133,11 @@ impl<'a> ExportObject<'a> {
                     m.len()
                 )));
             }
-            if let Some((t, &i)) = m.iter().enumerate().find(|&(_, &i)| i as usize >= materials) {
+            if let Some((t, &i)) = m
+                .iter()
+                .enumerate()
+                .find(|&(_, &i)| i as usize >= materials)
+            {
                 return Err(bad(format!(
                     "triangle {t} has material {i}, but there are {materials} materials"
                 )));
@@ -148,13 +152,21 @@ impl<'a> ExportObject<'a> {
                 if let Some(len) = len
                     && len != triangles
                 {
-                    return Err(bad(format!("{len} {name} entries for {triangles} triangles")));
+                    return Err(bad(format!(
+                        "{len} {name} entries for {triangles} triangles"
+                    )));
                 }
             }
             let finite = |v: &[f32]| v.iter().all(|x| x.is_finite());
             let ok = c.uv.iter().flatten().all(|t| t.iter().all(|x| finite(x)))
-                && c.normal.iter().flatten().all(|t| t.iter().all(|x| finite(x)))
-                && c.color.iter().flatten().all(|t| t.iter().all(|x| finite(x)));
+                && c.normal
+                    .iter()
+                    .flatten()
+                    .all(|t| t.iter().all(|x| finite(x)))
+                && c.color
+                    .iter()
+                    .flatten()
+                    .all(|t| t.iter().all(|x| finite(x)));
             if !ok {
                 return Err(bad("an attribute value is not finite".into()));
             }

@@ -191,6 +191,7 @@ pub fn shared_files() -> &'static MemoryFiles {
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::unwrap_used)]
     use super::*;
 
     #[test]
@@ -198,7 +199,10 @@ mod tests {
         let files = MemoryFiles::new();
         files.insert("./models/a.obj", b"a".to_vec());
         files.insert("tex/wood.jpg", b"w".to_vec());
-        assert_eq!(files.read(Path::new("models/a.obj")).ok(), Some(b"a".to_vec()));
+        assert_eq!(
+            files.read(Path::new("models/a.obj")).ok(),
+            Some(b"a".to_vec())
+        );
         assert_eq!(
             files.read(Path::new("other/dir/wood.jpg")).ok(),
             Some(b"w".to_vec())

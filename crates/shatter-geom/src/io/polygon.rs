@@ -36,7 +36,7 @@ impl Triangulator {
             return Some(vec![[0, 1, 2]]);
         }
         let normal = newell_normal(corners);
-        if !(normal.length_squared() > 0.0) || !normal.is_finite() {
+        if normal.length_squared() <= 0.0 || !normal.is_finite() {
             return None;
         }
         // Drop the normal's largest axis; keep the projection's orientation positive.
@@ -96,6 +96,7 @@ fn newell_normal(corners: &[DVec3]) -> DVec3 {
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::unwrap_used)]
     use super::*;
 
     fn area_vector(p: &[DVec3], tris: &[[usize; 3]]) -> DVec3 {

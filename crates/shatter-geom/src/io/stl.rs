@@ -49,7 +49,9 @@ pub(crate) fn read_stl(bytes: &[u8], cx: &mut ReadContext<'_>) -> Result<Model, 
     let triangles = (0..soup.len() as u32)
         .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
         .collect();
-    Ok(Model::from_mesh(TriMesh::new(positions, triangles).welded()))
+    Ok(Model::from_mesh(
+        TriMesh::new(positions, triangles).welded(),
+    ))
 }
 
 fn read_binary(bytes: &[u8], cx: &mut ReadContext<'_>) -> Result<Vec<[DVec3; 3]>, MeshIoError> {
@@ -143,7 +145,9 @@ fn read_ascii(bytes: &[u8], cx: &mut ReadContext<'_>) -> Result<Vec<[DVec3; 3]>,
         if soup.len() > MAX_TRIANGLES {
             return Err(MeshIoError::TooLarge {
                 path: cx.path.to_path_buf(),
-                message: format!("more than {MAX_TRIANGLES} triangles; shatter takes at most that many"),
+                message: format!(
+                    "more than {MAX_TRIANGLES} triangles; shatter takes at most that many"
+                ),
             });
         }
     }
@@ -152,7 +156,10 @@ fn read_ascii(bytes: &[u8], cx: &mut ReadContext<'_>) -> Result<Vec<[DVec3; 3]>,
         cx.warn(
             WarningKind::SkippedElements,
             short.0,
-            format!("skipped {} facets of fewer than three vertices (first ending at line {})", short.0, short.1),
+            format!(
+                "skipped {} facets of fewer than three vertices (first ending at line {})",
+                short.0, short.1
+            ),
         );
     }
     if polygons > 0 {

@@ -82,7 +82,15 @@ impl View<'_> {
     /// The elements as `N` floats each, padded with `fill` (a VEC3 colour read as RGBA).
     pub fn floats_padded<const N: usize>(&self, fill: f32) -> Vec<[f32; N]> {
         (0..self.count)
-            .map(|i| std::array::from_fn(|c| if c < self.components { self.get(i, c) } else { fill }))
+            .map(|i| {
+                std::array::from_fn(|c| {
+                    if c < self.components {
+                        self.get(i, c)
+                    } else {
+                        fill
+                    }
+                })
+            })
             .collect()
     }
 
@@ -150,7 +158,9 @@ pub(crate) fn view<'b>(
         return Err(format!("{at}: integer components must be normalized here"));
     }
     if a.sparse.is_some() {
-        return Err(format!("{at} is sparse; sparse accessors are not supported"));
+        return Err(format!(
+            "{at} is sparse; sparse accessors are not supported"
+        ));
     }
     let view_index = a
         .buffer_view
@@ -245,11 +255,21 @@ pub(crate) fn view_bytes<'b>(
     let buffer = match buffers.get(v.buffer) {
         Some(Ok(b)) => b,
         Some(Err(e)) => return Err(e.clone()),
-        None => return Err(format!("bufferView {index} names missing buffer {}", v.buffer)),
+        None => {
+            return Err(format!(
+                "bufferView {index} names missing buffer {}",
+                v.buffer
+            ));
+        }
     };
     v.byte_offset
         .checked_add(v.byte_length)
         .filter(|&e| e <= buffer.len() as u64)
         .map(|e| &buffer[v.byte_offset as usize..e as usize])
-        .ok_or_else(|| format!("bufferView {index} goes past the end of buffer {}", v.buffer))
+        .ok_or_else(|| {
+            format!(
+                "bufferView {index} goes past the end of buffer {}",
+                v.buffer
+            )
+        })
 }

@@ -90,7 +90,9 @@ pub(crate) fn document(json: &[u8]) -> Result<Root, String> {
         .and_then(|a| a.get("version"))
         .and_then(Value::as_str);
     match version {
-        Some(v) if v.starts_with("1.") || v == "1" => return Err(version_one(&format!("version {v}"))),
+        Some(v) if v.starts_with("1.") || v == "1" => {
+            return Err(version_one(&format!("version {v}")));
+        }
         Some(v) if !v.starts_with("2.") => {
             return Err(format!("glTF version {v}: only glTF 2.0 is read"));
         }
@@ -118,9 +120,7 @@ pub(crate) enum Uri {
 /// Resolves `uri`; an error message for a data URI that does not decode.
 pub(crate) fn resolve(cx: &ReadContext<'_>, uri: &str) -> Result<Uri, String> {
     if let Some(rest) = uri.strip_prefix("data:") {
-        let (meta, data) = rest
-            .split_once(',')
-            .ok_or("a data URI without a comma")?;
+        let (meta, data) = rest.split_once(',').ok_or("a data URI without a comma")?;
         if !meta.ends_with(";base64") {
             return Err("a data URI that is not base64".into());
         }

@@ -92,7 +92,10 @@ impl Reader<'_, '_> {
                 self.skipped_modes.1 += 1;
                 continue;
             }
-            out.push(self.decode_primitive(prim, &what, mode).map_err(|e| self.error(e))?);
+            out.push(
+                self.decode_primitive(prim, &what, mode)
+                    .map_err(|e| self.error(e))?,
+            );
         }
         let out = Arc::new(out);
         self.decoded.insert(m, out.clone());
@@ -114,7 +117,8 @@ impl Reader<'_, '_> {
             codes: INTEGERS_AND_FLOAT,
             normalized_ints: false,
         };
-        let positions = accessor::view(root, buffers, position, &format!("{what} POSITION"), &vec3)?;
+        let positions =
+            accessor::view(root, buffers, position, &format!("{what} POSITION"), &vec3)?;
         let count = positions.count;
         let same_count = |v: &accessor::View<'_>, name: &str| {
             if v.count == count {
@@ -280,8 +284,11 @@ impl Reader<'_, '_> {
         let root = self.root;
         let mut on_path = vec![false; root.nodes.len()];
         // (node, parent transform, whether leaving it)
-        let mut stack: Vec<(usize, DMat4, bool)> =
-            roots.iter().rev().map(|&n| (n, DMat4::IDENTITY, false)).collect();
+        let mut stack: Vec<(usize, DMat4, bool)> = roots
+            .iter()
+            .rev()
+            .map(|&n| (n, DMat4::IDENTITY, false))
+            .collect();
         let mut instances = 0usize;
         while let Some((n, parent, leaving)) = stack.pop() {
             if leaving {
@@ -306,7 +313,8 @@ impl Reader<'_, '_> {
                     ),
                 });
             }
-            let world = parent * local_transform(node).map_err(|e| self.error(format!("node {n}: {e}")))?;
+            let world =
+                parent * local_transform(node).map_err(|e| self.error(format!("node {n}: {e}")))?;
             if let Some(m) = node.mesh {
                 self.instance(m, world)?;
             }
@@ -378,7 +386,11 @@ impl Materials<'_> {
             return done.clone();
         }
         let Some(img) = self.root.images.get(index) else {
-            cx.warn(WarningKind::BadFile, 1, format!("{what}: image {index} does not exist; dropped"));
+            cx.warn(
+                WarningKind::BadFile,
+                1,
+                format!("{what}: image {index} does not exist; dropped"),
+            );
             return None;
         };
         let name = img.name.clone().unwrap_or_else(|| format!("image_{index}"));
@@ -386,7 +398,11 @@ impl Materials<'_> {
             (_, Some(view)) => match accessor::view_bytes(self.root, buffers, view) {
                 Ok(bytes) => image::from_bytes(cx, bytes.to_vec(), name, None, what),
                 Err(e) => {
-                    cx.warn(WarningKind::BadFile, 1, format!("{what}: image {index}: {e}; dropped"));
+                    cx.warn(
+                        WarningKind::BadFile,
+                        1,
+                        format!("{what}: image {index}: {e}; dropped"),
+                    );
                     None
                 }
             },
@@ -394,12 +410,20 @@ impl Materials<'_> {
                 Ok(Uri::Data(bytes)) => image::from_bytes(cx, bytes, name, None, what),
                 Ok(Uri::File(path)) => self.cache.load(cx, &path, what),
                 Err(e) => {
-                    cx.warn(WarningKind::BadFile, 1, format!("{what}: image {index}: {e}; dropped"));
+                    cx.warn(
+                        WarningKind::BadFile,
+                        1,
+                        format!("{what}: image {index}: {e}; dropped"),
+                    );
                     None
                 }
             },
             (None, None) => {
-                cx.warn(WarningKind::BadFile, 1, format!("{what}: image {index} has neither uri nor bufferView; dropped"));
+                cx.warn(
+                    WarningKind::BadFile,
+                    1,
+                    format!("{what}: image {index} has neither uri nor bufferView; dropped"),
+                );
                 None
             }
         };
@@ -425,21 +449,33 @@ impl Materials<'_> {
             return None;
         }
         if info.extensions.contains_key("KHR_texture_transform") {
-            cx.warn(WarningKind::Unsupported, 1, format!("{what}: KHR_texture_transform is ignored"));
+            cx.warn(
+                WarningKind::Unsupported,
+                1,
+                format!("{what}: KHR_texture_transform is ignored"),
+            );
         }
         let Some(texture) = self.root.textures.get(info.index) else {
-            cx.warn(WarningKind::BadFile, 1, format!("{what}: texture {} does not exist; dropped", info.index));
+            cx.warn(
+                WarningKind::BadFile,
+                1,
+                format!("{what}: texture {} does not exist; dropped", info.index),
+            );
             return None;
         };
         let Some(source) = texture.source else {
             cx.warn(
                 WarningKind::Unsupported,
                 1,
-                format!("{what}: texture {} has no PNG or JPEG source (only an extension's); dropped", info.index),
+                format!(
+                    "{what}: texture {} has no PNG or JPEG source (only an extension's); dropped",
+                    info.index
+                ),
             );
             return None;
         };
-        self.image(cx, buffers, source, what).map(|image| Texture { image })
+        self.image(cx, buffers, source, what)
+            .map(|image| Texture { image })
     }
 
     fn material(
@@ -449,7 +485,10 @@ impl Materials<'_> {
         index: usize,
     ) -> Material {
         let m = &self.root.materials[index];
-        let name = m.name.clone().unwrap_or_else(|| format!("material_{index}"));
+        let name = m
+            .name
+            .clone()
+            .unwrap_or_else(|| format!("material_{index}"));
         let what = format!("material {index} '{name}'");
         let mut out = Material {
             name,
@@ -473,10 +512,20 @@ impl Materials<'_> {
                         out.base_color_texture = self.texture(cx, buffers, info, &what);
                     }
                 }
-                Err(e) => cx.warn(WarningKind::BadFile, 1, format!("{what}: unreadable KHR_materials_pbrSpecularGlossiness: {e}")),
+                Err(e) => cx.warn(
+                    WarningKind::BadFile,
+                    1,
+                    format!("{what}: unreadable KHR_materials_pbrSpecularGlossiness: {e}"),
+                ),
             }
         }
-        let clamp = |v: f32| if v.is_finite() { v.clamp(0.0, 1.0) } else { 1.0 };
+        let clamp = |v: f32| {
+            if v.is_finite() {
+                v.clamp(0.0, 1.0)
+            } else {
+                1.0
+            }
+        };
         out.base_color = out.base_color.map(clamp);
         out.metallic = clamp(out.metallic);
         out.roughness = clamp(out.roughness);
@@ -498,7 +547,9 @@ pub(crate) fn read_gltf(bytes: &[u8], cx: &mut ReadContext<'_>) -> Result<Model,
     {
         return Err(error(
             cx.path,
-            format!("the file requires {ext} (compressed geometry), which shatter cannot read; export it without compression"),
+            format!(
+                "the file requires {ext} (compressed geometry), which shatter cannot read; export it without compression"
+            ),
         ));
     }
     let buffers = container::buffers(cx, &root, parts.bin);
@@ -519,7 +570,13 @@ pub(crate) fn read_gltf(bytes: &[u8], cx: &mut ReadContext<'_>) -> Result<Model,
     };
     let scene = match root.scene {
         Some(s) => Some(root.scenes.get(s).ok_or_else(|| {
-            error(reader.cx.path, format!("the default scene is {s}, but the file has {} scenes", root.scenes.len()))
+            error(
+                reader.cx.path,
+                format!(
+                    "the default scene is {s}, but the file has {} scenes",
+                    root.scenes.len()
+                ),
+            )
         })?),
         None => root.scenes.first(),
     };
@@ -544,21 +601,35 @@ fn finish(mut r: Reader<'_, '_>) -> Result<Model, MeshIoError> {
         );
     }
     if unknown > 0 {
-        r.cx.warn(WarningKind::SkippedElements, unknown, format!("skipped {unknown} primitives of an unknown mode"));
+        r.cx.warn(
+            WarningKind::SkippedElements,
+            unknown,
+            format!("skipped {unknown} primitives of an unknown mode"),
+        );
     }
     if r.has[0] && r.missing_uv > 0 {
         r.cx.warn(
             WarningKind::MissingAttribute,
             r.missing_uv,
-            format!("{} corners of primitives without TEXCOORD_0 given UV 0, 0", r.missing_uv),
+            format!(
+                "{} corners of primitives without TEXCOORD_0 given UV 0, 0",
+                r.missing_uv
+            ),
         );
     }
-    let mesh = TriMesh::new(std::mem::take(&mut r.positions), std::mem::take(&mut r.triangles));
+    let mesh = TriMesh::new(
+        std::mem::take(&mut r.positions),
+        std::mem::take(&mut r.triangles),
+    );
     if r.has[1] {
         // Primitives without normals: their faces' normals.
         for (t, n) in r.normal.iter_mut().enumerate() {
             if n.iter().all(|c| *c == [0.0; 3]) {
-                *n = [mesh.triangle_normal(t).normalize_or(DVec3::Y).as_vec3().to_array(); 3];
+                *n = [mesh
+                    .triangle_normal(t)
+                    .normalize_or(DVec3::Y)
+                    .as_vec3()
+                    .to_array(); 3];
             }
         }
     }

@@ -138,7 +138,8 @@ impl GlbBuilder {
             "bufferView": view,
             "mimeType": image.format.mime(),
         }));
-        self.textures.push(json!({ "source": self.images.len() - 1, "sampler": 0 }));
+        self.textures
+            .push(json!({ "source": self.images.len() - 1, "sampler": 0 }));
         let t = self.textures.len() - 1;
         self.image_index.insert(key, t);
         t
@@ -270,7 +271,8 @@ impl GlbBuilder {
         put(&mut root, "textures", self.textures);
         if has_textures {
             // Linear filtering, repeat wrapping: glTF's defaults, written out.
-            root["samplers"] = json!([{ "magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497 }]);
+            root["samplers"] =
+                json!([{ "magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497 }]);
         }
         put(&mut root, "accessors", self.accessors);
         put(&mut root, "bufferViews", self.views);

@@ -66,9 +66,8 @@ pub(crate) fn lines(text: &str) -> impl Iterator<Item = Line<'_>> {
             while let Some(stripped) = text.trim_end().strip_suffix('\\') {
                 let mut joined = stripped.to_string();
                 joined.push(' ');
-                match raw.next() {
-                    Some((_, next)) => joined.push_str(next),
-                    None => {}
+                if let Some((_, next)) = raw.next() {
+                    joined.push_str(next);
                 }
                 text = Cow::Owned(joined);
             }
@@ -99,7 +98,9 @@ mod tests {
     use super::*;
 
     fn collect(text: &str) -> Vec<(usize, String)> {
-        lines(text).map(|l| (l.number, l.text.into_owned())).collect()
+        lines(text)
+            .map(|l| (l.number, l.text.into_owned()))
+            .collect()
     }
 
     #[test]

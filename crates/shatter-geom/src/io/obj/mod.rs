@@ -7,4 +7,6 @@ mod read;
 mod write;
 
 pub(crate) use read::read_obj;
-pub use write::{save_obj, save_obj_with_materials, write_mtl, write_obj, write_obj_with_materials};
+pub use write::{
+    save_obj, save_obj_with_materials, write_mtl, write_obj, write_obj_with_materials,
+};

@@ -72,8 +72,8 @@ const IGNORED: [&str; 14] = [
 
 /// Free-form geometry statements (curves and surfaces), skipped with a warning.
 const FREE_FORM: [&str; 14] = [
-    "vp", "cstype", "deg", "bmat", "step", "curv", "curv2", "surf", "parm", "trim", "hole",
-    "scrv", "sp", "end",
+    "vp", "cstype", "deg", "bmat", "step", "curv", "curv2", "surf", "parm", "trim", "hole", "scrv",
+    "sp", "end",
 ];
 
 struct Reader<'a, 'c> {
@@ -269,15 +269,14 @@ impl<'a, 'c> Reader<'a, 'c> {
     fn material_library(&mut self, rest: &str) {
         // A name may hold spaces: the whole rest first, then each word.
         let whole = self.cx.resolve(Path::new(&rest.replace('\\', "/")));
-        let candidates: Vec<PathBuf> = if rest.split_whitespace().count() > 1
-            && self.cx.read(&whole).is_err()
-        {
-            rest.split_whitespace()
-                .map(|w| self.cx.resolve(Path::new(&w.replace('\\', "/"))))
-                .collect()
-        } else {
-            vec![whole]
-        };
+        let candidates: Vec<PathBuf> =
+            if rest.split_whitespace().count() > 1 && self.cx.read(&whole).is_err() {
+                rest.split_whitespace()
+                    .map(|w| self.cx.resolve(Path::new(&w.replace('\\', "/"))))
+                    .collect()
+            } else {
+                vec![whole]
+            };
         for path in candidates {
             if self.library_paths.contains(&path) {
                 continue;
@@ -345,7 +344,10 @@ impl<'a, 'c> Reader<'a, 'c> {
             (&self.lines_skipped, "line element"),
             (&self.points_skipped, "point element"),
             (&self.free_form, "free-form (curve or surface) statement"),
-            (&self.degenerate, "face with fewer than three distinct corners"),
+            (
+                &self.degenerate,
+                "face with fewer than three distinct corners",
+            ),
         ];
         let mut out = Vec::new();
         for (s, what) in skipped {
@@ -360,7 +362,10 @@ impl<'a, 'c> Reader<'a, 'c> {
                 out.push((
                     WarningKind::SkippedElements,
                     s.count,
-                    format!("skipped {} {what} (first at line {})", s.count, s.first_line),
+                    format!(
+                        "skipped {} {what} (first at line {})",
+                        s.count, s.first_line
+                    ),
                 ));
             }
         }
@@ -502,15 +507,15 @@ impl<'a, 'c> Reader<'a, 'c> {
         } else {
             self.material_names
                 .iter()
-                .map(|name| {
-                    match self.libraries.iter().find(|m| &m.name == name) {
+                .map(
+                    |name| match self.libraries.iter().find(|m| &m.name == name) {
                         Some(m) => m.clone(),
                         None => {
                             unknown.push(name.clone());
                             Material::named(if name.is_empty() { "default" } else { name })
                         }
-                    }
-                })
+                    },
+                )
                 .collect()
         };
         let unknown: Vec<String> = unknown.into_iter().filter(|n| !n.is_empty()).collect();
