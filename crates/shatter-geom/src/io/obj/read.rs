@@ -314,7 +314,9 @@ impl<'a, 'c> Reader<'a, 'c> {
             "vn" => {
                 let (c, _) = self.numbers::<3>(n, "vn", &words, 3)?;
                 let v = DVec3::from(c);
-                let v = if v.length_squared() > 0.0 {
+                // Unit already (within f32 rounding): kept as written, so a written
+                // normal reads back bit for bit.
+                let v = if (v.length_squared() - 1.0).abs() > 1e-6 && v.length_squared() > 0.0 {
                     v.normalize()
                 } else {
                     v

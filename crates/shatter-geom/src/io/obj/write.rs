@@ -122,7 +122,8 @@ fn write_unchecked<W: Write + ?Sized>(
             for &[u, v] in uvs.iter().flatten() {
                 let next = uv_index.len();
                 if *uv_index.entry([u.to_bits(), v.to_bits()]).or_insert(next) == next {
-                    uv_of.push([u, 1.0 - v]);
+                    // In f64, as the reader flips it back: exact both ways.
+                    uv_of.push([f64::from(u), 1.0 - f64::from(v)]);
                 }
             }
             for [u, v] in &uv_of {
