@@ -191,7 +191,6 @@ pub fn shared_files() -> &'static MemoryFiles {
 
 #[cfg(test)]
 mod tests {
-    #![allow(clippy::unwrap_used)]
     use super::*;
 
     #[test]

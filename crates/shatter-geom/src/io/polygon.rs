@@ -96,7 +96,6 @@ fn newell_normal(corners: &[DVec3]) -> DVec3 {
 
 #[cfg(test)]
 mod tests {
-    #![allow(clippy::unwrap_used)]
     use super::*;
 
     fn area_vector(p: &[DVec3], tris: &[[usize; 3]]) -> DVec3 {
