@@ -68,6 +68,15 @@ pub fn load_mesh(path: &Path) -> Result<TriMesh, CliError> {
     io::load_mesh(path).map_err(CliError::input)
 }
 
+/// Loads a model (mesh, attributes, materials) with the reader's warnings. Every
+/// failure is bad input (exit code 2), named by the file.
+pub fn load_model(path: &Path) -> Result<io::LoadedModel, CliError> {
+    if !path.exists() {
+        return Err(CliError::input(format!("{}: no such file", path.display())));
+    }
+    io::load_model(path).map_err(CliError::input)
+}
+
 /// Writes one mesh (no interior faces).
 pub fn write_mesh(path: &Path, format: MeshFormat, mesh: &TriMesh) -> Result<(), CliError> {
     let name = path

@@ -21,8 +21,8 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use clap::{Parser, Subcommand};
 
 use crate::commands::{
-    bench_creation, bench_delaunay, bench_fracture, bench_step, fracture, shape, simulate, study,
-    tetrahedralize,
+    bench_creation, bench_delaunay, bench_fracture, bench_step, fracture, inspect, shape, simulate,
+    study, tetrahedralize,
 };
 use crate::error::CliError;
 
@@ -43,6 +43,8 @@ enum Command {
     Shape(shape::ShapeArgs),
     /// Fracture a mesh into bonded fragments (tetra, voronoi or slice).
     Fracture(fracture::FractureArgs),
+    /// What a mesh file holds (shells, holes, volume, materials, UV sets) without fracturing.
+    Inspect(inspect::InspectArgs),
     /// Run a scene headless and print its statistics and final-state digest.
     Simulate(simulate::SimulateArgs),
     /// The influence of the parameters on a shot at a standard object (CSV and plots).
@@ -70,6 +72,7 @@ fn run(command: &Command) -> Result<(), CliError> {
         Command::Tetrahedralize(a) => tetrahedralize::run(a),
         Command::Shape(a) => shape::run(a),
         Command::Fracture(a) => fracture::run(a),
+        Command::Inspect(a) => inspect::run(a),
         // Every simulate / bench step failure is a bad scene or flag: exit code 2.
         Command::Simulate(a) => simulate::run(a).map(|_| ()).map_err(CliError::Input),
         Command::Bench(BenchCommand::Delaunay(a)) => bench_delaunay::run(a),

@@ -64,7 +64,9 @@ fn same(a: &[String], b: &[String], what: &str) {
 
 #[test]
 fn a_textured_obj_round_trips_through_obj_with_its_textures_copied() {
-    let spider = io::load_model(corpus("obj/spider/spider.obj")).unwrap().model;
+    let spider = io::load_model(corpus("obj/spider/spider.obj"))
+        .unwrap()
+        .model;
     let dir = temp_dir("obj");
     let out = dir.join("spider out.obj");
     let object = ExportObject::of_model("spider", &spider);
@@ -92,7 +94,11 @@ fn a_textured_obj_round_trips_through_obj_with_its_textures_copied() {
     // only used ones.
     assert_eq!(back.materials.len(), spider.materials.len());
     // Zero normals came in as the face's normal and go out as it: equal.
-    same(&signature(&back, false), &signature(&spider, false), "spider");
+    same(
+        &signature(&back, false),
+        &signature(&spider, false),
+        "spider",
+    );
     for (a, b) in back.materials.iter().zip(&spider.materials) {
         assert_eq!(
             a.base_color_texture.as_ref().map(|t| &t.image.bytes),
@@ -102,7 +108,10 @@ fn a_textured_obj_round_trips_through_obj_with_its_textures_copied() {
     // tobj reads the same materials and texture names.
     let (models, materials) = tobj::load_obj(&out, &tobj::GPU_LOAD_OPTIONS).unwrap();
     let materials = materials.unwrap();
-    let textured = materials.iter().filter(|m| m.diffuse_texture.is_some()).count();
+    let textured = materials
+        .iter()
+        .filter(|m| m.diffuse_texture.is_some())
+        .count();
     assert_eq!(textured, 4);
     let faces: usize = models.iter().map(|m| m.mesh.indices.len() / 3).sum();
     assert_eq!(faces, spider.mesh.triangles.len());
@@ -111,13 +120,19 @@ fn a_textured_obj_round_trips_through_obj_with_its_textures_copied() {
 
 #[test]
 fn a_textured_glb_round_trips_through_glb_with_its_image_embedded() {
-    let boxed = io::load_model(corpus("gltf/BoxTextured/BoxTextured.gltf")).unwrap().model;
+    let boxed = io::load_model(corpus("gltf/BoxTextured/BoxTextured.gltf"))
+        .unwrap()
+        .model;
     let mut glb = Vec::new();
     let object = ExportObject::of_model("box", &boxed);
     io::write_glb_with_materials(&mut glb, &[object], &boxed.materials).unwrap();
     let back = io::parse_model(&glb, io::MeshFormat::Glb, "box.glb").unwrap();
     assert!(back.warnings.is_empty(), "{:?}", back.warnings);
-    same(&signature(&back.model, true), &signature(&boxed, true), "box");
+    same(
+        &signature(&back.model, true),
+        &signature(&boxed, true),
+        "box",
+    );
     let png = std::fs::read(corpus("gltf/BoxTextured/CesiumLogoFlat.png")).unwrap();
     let image = &back.model.materials[0]
         .base_color_texture
@@ -149,9 +164,15 @@ fn vertex_colours_and_several_materials_survive_obj_and_glb() {
         same(&signature(&back, false), &signature(&model, false), file);
         let mut glb = Vec::new();
         io::write_glb_with_materials(&mut glb, &[object], &model.materials).unwrap();
-        let back = io::parse_model(&glb, io::MeshFormat::Glb, "m.glb").unwrap().model;
+        let back = io::parse_model(&glb, io::MeshFormat::Glb, "m.glb")
+            .unwrap()
+            .model;
         assert_eq!(back.materials.len(), model.materials.len(), "{file}");
-        assert_eq!(back.corners.color.is_some(), model.corners.color.is_some(), "{file}");
+        assert_eq!(
+            back.corners.color.is_some(),
+            model.corners.color.is_some(),
+            "{file}"
+        );
         assert_eq!(signature(&back, true).len(), model.mesh.triangles.len());
     }
 }
@@ -162,11 +183,17 @@ fn export_objects_with_bad_materials_or_corners_are_refused() {
     let too_few = &model.materials[..1];
     let object = ExportObject::of_model("cube", &model);
     let err = io::write_glb_with_materials(Vec::new(), &[object], too_few).unwrap_err();
-    assert!(err.to_string().starts_with("object cube: triangle"), "{err}");
+    assert!(
+        err.to_string().starts_with("object cube: triangle"),
+        "{err}"
+    );
     let mut short = model.corners.clone();
     short.normal.as_mut().unwrap().pop();
     let object = ExportObject::of_model("cube", &model).with_corners(&short);
     let err = io::write_obj_with_materials(Vec::new(), &[object], Some(&model.materials), None)
         .unwrap_err();
-    assert_eq!(err.to_string(), "object cube: 11 normal entries for 12 triangles");
+    assert_eq!(
+        err.to_string(),
+        "object cube: 11 normal entries for 12 triangles"
+    );
 }

@@ -31,6 +31,7 @@ mod export;
 mod files;
 mod gltf;
 mod image;
+mod inspect;
 mod load;
 mod obj;
 mod polygon;
@@ -45,6 +46,7 @@ pub use files::{FileSource, FileSystem, Layered, MemoryFiles, NoFiles, shared_fi
 pub use gltf::{
     GlbBuilder, save_glb, save_glb_with_materials, write_glb, write_glb_with_materials,
 };
+pub use inspect::{Inspection, MaterialReport, ShellReport, inspect};
 pub use load::{
     LoadedModel, MAX_TRIANGLES, MeshFormat, load_mesh, load_model, load_model_from, parse_mesh,
     parse_model, parse_model_with,
