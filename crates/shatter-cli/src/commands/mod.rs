@@ -1,5 +1,6 @@
 //! One module per command: each has a clap `Args` struct and a `run` function.
 
+pub mod batch;
 pub mod bench_creation;
 pub mod bench_delaunay;
 pub mod bench_fracture;
