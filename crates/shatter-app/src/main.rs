@@ -13,19 +13,31 @@ use shatter_app::ShatterAppPlugin;
 
 const USAGE: &str = "usage: shatter-app [--autotest DIR]";
 
-/// Called by the web page (web/index.html) with a mesh file the user picked: the Custom
-/// shape of the Add Object and Fire panels can then name it. Returns an error message,
-/// or an empty string when the file reads as a mesh.
+/// Called by the web page (web/index.html) with a file the user picked: a mesh file, which
+/// the Custom shape of the Add Object and Fire panels can then name, or a file a mesh
+/// refers to (a `.gltf`'s `.bin`, an OBJ's `.mtl`, a texture), kept beside it. Returns an
+/// error message, or an empty string when the file reads as a mesh (or was kept).
 #[cfg(target_arch = "wasm32")]
 #[wasm_bindgen::prelude::wasm_bindgen]
 pub fn add_mesh(name: String, bytes: Vec<u8>) -> String {
+    let files = shatter_geom::io::shared_files();
     let Some(format) = shatter_geom::io::MeshFormat::from_path(&name) else {
-        return format!("'{name}': expected an .obj, .stl, .gltf or .glb file");
+        const COMPANIONS: [&str; 5] = ["bin", "mtl", "png", "jpg", "jpeg"];
+        let ext = std::path::Path::new(&name)
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        if ext.is_some_and(|e| COMPANIONS.contains(&e.as_str())) {
+            files.insert(&name, bytes);
+            return String::new();
+        }
+        return format!(
+            "'{name}': expected an .obj, .stl, .gltf or .glb file (or a .bin, .mtl, .png or .jpg it uses)"
+        );
     };
-    if let Err(e) = shatter_geom::io::parse_mesh(&bytes, format, &name) {
+    if let Err(e) = shatter_geom::io::parse_model_with(&bytes, format, &name, files) {
         return e.to_string();
     }
-    shatter_geom::io::add_memory_file(&name, bytes);
+    files.insert(&name, bytes);
     String::new()
 }
 

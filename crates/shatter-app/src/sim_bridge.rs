@@ -385,8 +385,8 @@ pub fn check_custom_mesh(path: &Path) -> Result<(), String> {
             path.display()
         ));
     }
-    // A mesh picked in the web page lives in memory (shatter_geom::io::add_memory_file).
-    if shatter_geom::io::memory_file(path).is_none() {
+    // A mesh picked in the web page lives in memory (shatter_geom::io::shared_files).
+    if !shatter_geom::io::shared_files().contains(path) {
         let meta = std::fs::metadata(path).map_err(|e| {
             if cfg!(target_arch = "wasm32") {
                 format!(

@@ -60,14 +60,13 @@ pub fn validate_solid(mesh: &mut TriMesh, origin: &str) -> Result<Option<String>
     }
 }
 
-/// Loads a mesh file (OBJ, STL or GLB/glTF, by extension). Every failure is bad input
-/// (exit code 2), named by the file.
-pub fn load_mesh(path: &Path) -> Result<TriMesh, CliError> {
+/// Loads a model (mesh, attributes, materials) with the reader's warnings. Every
+/// failure is bad input (exit code 2), named by the file.
+pub fn load_model(path: &Path) -> Result<io::LoadedModel, CliError> {
     if !path.exists() {
         return Err(CliError::input(format!("{}: no such file", path.display())));
     }
-    // The library's errors already start with the file name.
-    io::load_mesh(path).map_err(CliError::input)
+    io::load_model(path).map_err(CliError::input)
 }
 
 /// Writes one mesh (no interior faces).

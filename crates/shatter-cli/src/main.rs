@@ -26,8 +26,8 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use clap::{Parser, Subcommand};
 
 use crate::commands::{
-    bench_creation, bench_delaunay, bench_fracture, bench_step, fracture, shape, simulate, study,
-    tetrahedralize,
+    bench_creation, bench_delaunay, bench_fracture, bench_step, fracture, inspect, shape, simulate,
+    study, tetrahedralize,
 };
 use crate::context::Context;
 use crate::error::CliError;
@@ -53,6 +53,8 @@ enum Command {
     Shape(shape::ShapeArgs),
     /// Fracture a mesh into bonded fragments (tetra, voronoi or slice).
     Fracture(fracture::FractureArgs),
+    /// What a mesh file holds (shells, holes, volume, materials, UV sets) without fracturing.
+    Inspect(inspect::InspectArgs),
     /// Run a scene headless and print its statistics and final-state digest.
     Simulate(simulate::SimulateArgs),
     /// The influence of the parameters on a shot at a standard object (CSV and plots).
@@ -80,6 +82,7 @@ fn run(command: &Command, ctx: &Context) -> Result<(), CliError> {
         Command::Tetrahedralize(a) => tetrahedralize::run(a, ctx),
         Command::Shape(a) => shape::run(a, ctx),
         Command::Fracture(a) => fracture::run(a, ctx),
+        Command::Inspect(a) => inspect::run(a),
         Command::Simulate(a) => simulate::run(a, ctx).map(|_| ()),
         Command::Bench(BenchCommand::Delaunay(a)) => {
             // Each size is checked before any is measured (bench_delaunay.rs measures; the

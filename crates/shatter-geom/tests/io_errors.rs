@@ -76,15 +76,18 @@ fn files_without_triangles_are_errors() {
 }
 
 #[test]
-fn truncated_binary_stl_is_an_error() {
+fn truncated_binary_stl_loads_what_it_holds_with_a_warning() {
     let mut bytes = Vec::new();
     io::write_stl(&mut bytes, &shapes::cube(), StlFormat::Binary).unwrap();
     let cut = &bytes[..84 + 50 * 5 + 10];
-    let err = io::parse_mesh(cut, MeshFormat::Stl, "cut.stl").unwrap_err();
+    let loaded = io::parse_model(cut, MeshFormat::Stl, "cut.stl").unwrap();
+    assert_eq!(loaded.model.mesh.triangles.len(), 5);
+    assert_eq!(loaded.warnings.len(), 1);
+    assert_eq!(loaded.warnings[0].kind, io::WarningKind::Truncated);
     assert_eq!(
-        err.to_string(),
-        "cut.stl: truncated binary STL: the header announces 12 triangles (684 bytes) but \
-         the file has 344 bytes"
+        loaded.warnings[0].to_string(),
+        "cut.stl: binary STL header announces 12 triangles (684 bytes) but the file has 344 \
+         bytes: read the 5 triangles it holds"
     );
     let err = io::parse_mesh(&bytes[..40], MeshFormat::Stl, "tiny.stl").unwrap_err();
     assert!(err.to_string().contains("needs 84"), "{err}");

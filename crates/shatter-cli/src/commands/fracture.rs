@@ -51,11 +51,12 @@ pub enum PatternArg {
 
 /// Arguments of `shatter fracture`.
 #[derive(Debug, Args)]
-#[command(group(ArgGroup::new("source").required(true).args(["mesh", "shape"])))]
+#[command(group(ArgGroup::new("source").required(true).args(["meshes", "shape"])))]
 pub struct FractureArgs {
-    /// Mesh file: .obj, .stl or .glb/.gltf (closed, consistently wound).
+    /// Mesh file: .obj, .stl or .glb/.gltf (closed, consistently wound). Several files or
+    /// folders (their mesh files) fracture them all, in parallel, into --out-dir.
     #[arg(value_name = "MESH")]
-    pub mesh: Option<PathBuf>,
+    pub meshes: Vec<PathBuf>,
     /// A built-in shape instead of a file.
     #[arg(long, value_enum, value_name = "NAME")]
     pub shape: Option<ShapeName>,
@@ -95,9 +96,34 @@ pub struct FractureArgs {
     /// Write the fragments: .obj (one object per fragment) or .glb (one node per fragment).
     #[arg(long, value_name = "FILE.obj|FILE.glb")]
     pub out: Option<PathBuf>,
+    /// Batch: write one output per input into this folder, and summary.json.
+    #[arg(long, value_name = "DIR", conflicts_with = "out")]
+    pub out_dir: Option<PathBuf>,
+    /// Batch: the outputs' format [default: glb].
+    #[arg(long, value_enum, value_name = "FORMAT")]
+    pub out_format: Option<OutFormat>,
+    /// Batch: files fractured at once [default: the number of cores].
+    #[arg(long, value_name = "N")]
+    pub jobs: Option<usize>,
     /// Print one JSON object with counts, volumes and the time.
     #[arg(long)]
     pub json: bool,
+}
+
+/// Output format of a batch.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum OutFormat {
+    /// Wavefront OBJ (with MTL).
+    Obj,
+    /// Binary glTF.
+    Glb,
+}
+
+impl FractureArgs {
+    /// Whether this is a batch: several inputs, a folder, or --out-dir.
+    pub fn is_batch(&self) -> bool {
+        self.meshes.len() > 1 || self.out_dir.is_some() || self.meshes.iter().any(|p| p.is_dir())
+    }
 }
 
 /// Where the mesh comes from.
@@ -206,15 +232,21 @@ impl MethodArg {
 
 impl FractureArgs {
     /// Validates the arguments into a configuration and the optional output.
-    fn validate(
+    pub(crate) fn validate(
         &self,
         ctx: &Context,
     ) -> Result<(FractureConfig, Option<(PathBuf, MeshFormat)>), CliError> {
-        let source = match (&self.mesh, self.shape) {
-            (Some(path), None) => MeshSource::File(path.clone()),
-            (None, Some(shape)) => MeshSource::Shape(shape),
+        let source = match (self.meshes.as_slice(), self.shape) {
+            ([path], None) => MeshSource::File(path.clone()),
+            ([], Some(shape)) => MeshSource::Shape(shape),
+            ([_, _, ..], None) => MeshSource::File(self.meshes[0].clone()),
             _ => return Err(CliError::input("give either a MESH file or --shape")),
         };
+        if !self.is_batch() && (self.out_format.is_some() || self.jobs.is_some()) {
+            return Err(CliError::input(
+                "--out-format and --jobs apply to a batch (several MESH files, a folder, or --out-dir)",
+            ));
+        }
         let scale = validate_scale(self.scale)?;
         let method = self.method;
         let refuse = |flag: &str, applies_to: &str| {
@@ -421,14 +453,20 @@ pub fn check_fracture(
 /// Loads (and scales) the mesh a configuration names and checks that it is a valid
 /// solid; returns it with any warnings (an inward mesh is flipped).
 pub fn load_source(config: &FractureConfig) -> Result<(TriMesh, Vec<String>), CliError> {
-    let (mesh, origin) = match &config.source {
-        MeshSource::File(path) => (library::load_mesh(path)?, path.display().to_string()),
-        MeshSource::Shape(name) => (library::builtin_shape(*name)?, format!("shape {name}")),
+    let (mesh, origin, mut warnings): (TriMesh, String, Vec<String>) = match &config.source {
+        MeshSource::File(path) => {
+            let loaded = library::load_model(path)?;
+            let warnings = loaded.warnings.iter().map(|w| w.to_string()).collect();
+            (loaded.model.mesh, path.display().to_string(), warnings)
+        }
+        MeshSource::Shape(name) => (
+            library::builtin_shape(*name)?,
+            format!("shape {name}"),
+            Vec::new(),
+        ),
     };
     let mut mesh = library::scaled(mesh, config.scale);
-    let warnings = library::validate_solid(&mut mesh, &origin)?
-        .into_iter()
-        .collect();
+    warnings.extend(library::validate_solid(&mut mesh, &origin)?);
     Ok((mesh, warnings))
 }
 
@@ -445,6 +483,9 @@ pub fn fracture_timed(
 
 /// Runs `shatter fracture`.
 pub fn run(args: &FractureArgs, ctx: &Context) -> Result<(), CliError> {
+    if args.is_batch() {
+        return super::batch::run(args, ctx);
+    }
     let (config, out) = args.validate(ctx)?;
     let (mesh, mut warnings) = load_source(&config)?;
     let estimate = check_fracture(ctx, &mesh, &config)?;

@@ -49,10 +49,55 @@ pub enum MeshIoError {
         message: String,
     },
     /// The file holds no triangles.
-    #[error("{path}: no triangles in the file")]
+    #[error("{path}: no triangles in the file{found}")]
     NoTriangles {
         /// The file.
         path: PathBuf,
+        /// What the reader skipped instead, as `" (it skipped ...)"`, or empty.
+        found: String,
+    },
+    /// A vertex has a NaN or infinite coordinate.
+    #[error("{path}: vertex {vertex} has a non-finite coordinate")]
+    NotFinite {
+        /// The file.
+        path: PathBuf,
+        /// The vertex (0-based, in the order read).
+        vertex: usize,
+    },
+    /// The file asks for more than shatter takes (triangles, nesting), refused before the
+    /// memory is spent.
+    #[error("{path}: {message}")]
+    TooLarge {
+        /// The file.
+        path: PathBuf,
+        /// What, and the limit.
+        message: String,
+    },
+    /// An attribute value (UV, normal, colour) is NaN or infinite.
+    #[error("{path}: {attribute} of triangle {triangle} is not finite")]
+    NotFiniteAttribute {
+        /// The file.
+        path: PathBuf,
+        /// Which attribute.
+        attribute: &'static str,
+        /// The triangle (0-based, in the order read).
+        triangle: usize,
+    },
+    /// A reader produced a model whose parts disagree (a bug in shatter, not the file).
+    #[error("{path}: internal error: the model read is inconsistent: {message}")]
+    Inconsistent {
+        /// The file.
+        path: PathBuf,
+        /// What disagrees.
+        message: String,
+    },
+    /// An exported object's attributes do not fit its triangles or materials.
+    #[error("object {object}: {message}")]
+    BadObject {
+        /// The object's name.
+        object: String,
+        /// What is wrong.
+        message: String,
     },
     /// An exported object's interior flags do not match its triangles.
     #[error("object {object}: {flags} interior flags for {triangles} triangles")]

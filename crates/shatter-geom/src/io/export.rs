@@ -1,10 +1,20 @@
-//! What the writers export: named meshes with per-triangle surface / interior flags.
+//! What the writers export: named meshes whose triangles are flagged surface or interior,
+//! optionally with a material per triangle (over a material list shared by all objects)
+//! and attributes per corner.
 
 use super::MeshIoError;
 use crate::TriMesh;
+use crate::model::{Corners, Material, Model};
 
 /// One object to export: a named mesh whose triangles are flagged surface or interior
-/// (cut faces of a fragment). Writers give each kind its own material.
+/// (cut faces of a fragment), optionally with per-triangle materials and per-corner
+/// attributes.
+///
+/// Materials: with [`with_materials`](Self::with_materials) each triangle names its
+/// material in the list handed to the writer ([`write_glb_with_materials`](super::write_glb_with_materials),
+/// [`save_obj_with_materials`](super::save_obj_with_materials)); without, surface
+/// triangles get the list's first material and interior ones the `interior` material
+/// (the writers add one when the list has none).
 ///
 /// ```
 /// use shatter_geom::{io::ExportObject, shapes};
@@ -21,6 +31,10 @@ pub struct ExportObject<'a> {
     pub mesh: &'a TriMesh,
     /// Per triangle: `true` for an interior (cut) face. `None`: all surface.
     pub interior: Option<&'a [bool]>,
+    /// Per triangle: its material, an index into the writer's material list.
+    pub material: Option<&'a [u32]>,
+    /// Per-corner attributes (UVs, normals, colours), one entry per triangle.
+    pub corners: Option<&'a Corners>,
 }
 
 /// Material names used by the writers.
@@ -40,13 +54,50 @@ impl<'a> ExportObject<'a> {
             name,
             mesh,
             interior: None,
+            material: None,
+            corners: None,
         }
+    }
+
+    /// A model's mesh with its materials (indices into `model.materials`, which is the
+    /// list to hand the writer) and corner attributes.
+    ///
+    /// ```
+    /// use shatter_geom::{io::{self, ExportObject}, model::Model, shapes};
+    /// let model = Model::from_mesh(shapes::cube());
+    /// let mut glb = Vec::new();
+    /// io::write_glb_with_materials(&mut glb, &[ExportObject::of_model("cube", &model)], &model.materials)
+    ///     .unwrap();
+    /// let doc = gltf::Gltf::from_slice(&glb).unwrap();
+    /// // The model's one material, and the `interior` material the writer adds.
+    /// assert_eq!(doc.materials().count(), 2);
+    /// ```
+    pub fn of_model(name: &'a str, model: &'a Model) -> Self {
+        Self::new(name, &model.mesh)
+            .with_materials(&model.material)
+            .with_corners(&model.corners)
     }
 
     /// With per-triangle interior flags.
     pub fn with_interior(self, interior: &'a [bool]) -> Self {
         Self {
             interior: Some(interior),
+            ..self
+        }
+    }
+
+    /// With a material per triangle (indices into the writer's material list).
+    pub fn with_materials(self, material: &'a [u32]) -> Self {
+        Self {
+            material: Some(material),
+            ..self
+        }
+    }
+
+    /// With per-corner attributes.
+    pub fn with_corners(self, corners: &'a Corners) -> Self {
+        Self {
+            corners: Some(corners),
             ..self
         }
     }
@@ -59,9 +110,13 @@ impl<'a> ExportObject<'a> {
             .unwrap_or(false)
     }
 
-    /// Checks flags length and indices.
-    pub(crate) fn validate(&self) -> Result<(), MeshIoError> {
+    /// Checks flags, materials and attributes against the triangles, and the indices.
+    pub(crate) fn validate(&self, materials: usize) -> Result<(), MeshIoError> {
         let triangles = self.mesh.triangles.len();
+        let bad = |message: String| MeshIoError::BadObject {
+            object: self.name.to_string(),
+            message,
+        };
         if let Some(flags) = self.interior
             && flags.len() != triangles
         {
@@ -70,6 +125,51 @@ impl<'a> ExportObject<'a> {
                 flags: flags.len(),
                 triangles,
             });
+        }
+        if let Some(m) = self.material {
+            if m.len() != triangles {
+                return Err(bad(format!(
+                    "{} material indices for {triangles} triangles",
+                    m.len()
+                )));
+            }
+            if let Some((t, &i)) = m
+                .iter()
+                .enumerate()
+                .find(|&(_, &i)| i as usize >= materials)
+            {
+                return Err(bad(format!(
+                    "triangle {t} has material {i}, but there are {materials} materials"
+                )));
+            }
+        }
+        if let Some(c) = self.corners {
+            for (name, len) in [
+                ("uv", c.uv.as_ref().map(Vec::len)),
+                ("normal", c.normal.as_ref().map(Vec::len)),
+                ("color", c.color.as_ref().map(Vec::len)),
+            ] {
+                if let Some(len) = len
+                    && len != triangles
+                {
+                    return Err(bad(format!(
+                        "{len} {name} entries for {triangles} triangles"
+                    )));
+                }
+            }
+            let finite = |v: &[f32]| v.iter().all(|x| x.is_finite());
+            let ok = c.uv.iter().flatten().all(|t| t.iter().all(|x| finite(x)))
+                && c.normal
+                    .iter()
+                    .flatten()
+                    .all(|t| t.iter().all(|x| finite(x)))
+                && c.color
+                    .iter()
+                    .flatten()
+                    .all(|t| t.iter().all(|x| finite(x)));
+            if !ok {
+                return Err(bad("an attribute value is not finite".into()));
+            }
         }
         let vertices = self.mesh.positions.len();
         for (triangle, tri) in self.mesh.triangles.iter().enumerate() {
@@ -83,5 +183,56 @@ impl<'a> ExportObject<'a> {
             }
         }
         Ok(())
+    }
+}
+
+/// The material list a writer writes, and which entry interior faces without a
+/// material of their own take.
+pub(crate) struct ExportMaterials {
+    pub list: Vec<Material>,
+    pub interior: u32,
+}
+
+impl ExportMaterials {
+    /// `given`, or the default `surface` / `interior` pair; an `interior` material is
+    /// appended when the list has none.
+    pub fn new(given: Option<&[Material]>) -> ExportMaterials {
+        let mut list = match given {
+            Some(m) if !m.is_empty() => m.to_vec(),
+            _ => {
+                let mut surface = Material::named(SURFACE_MATERIAL);
+                surface.base_color[..3].copy_from_slice(&SURFACE_COLOR);
+                surface.roughness = 0.8;
+                vec![surface]
+            }
+        };
+        let interior = match list.iter().position(|m| m.name == INTERIOR_MATERIAL) {
+            Some(i) => i,
+            None => {
+                let mut m = Material::named(INTERIOR_MATERIAL);
+                m.base_color[..3].copy_from_slice(&INTERIOR_COLOR);
+                m.roughness = 0.8;
+                list.push(m);
+                list.len() - 1
+            }
+        };
+        ExportMaterials {
+            list,
+            interior: interior as u32,
+        }
+    }
+
+    /// The material of triangle `t` of `o`.
+    pub fn of(&self, o: &ExportObject<'_>, t: usize) -> u32 {
+        match o.material {
+            Some(m) => m[t],
+            None if o.is_interior(t) => self.interior,
+            None => 0,
+        }
+    }
+
+    /// Validates every object against this list.
+    pub fn validate(&self, objects: &[ExportObject<'_>]) -> Result<(), MeshIoError> {
+        objects.iter().try_for_each(|o| o.validate(self.list.len()))
     }
 }

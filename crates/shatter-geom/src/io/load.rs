@@ -1,18 +1,20 @@
-//! Loading a mesh from a file, by its extension.
+//! Loading a model (or just its mesh) from a file or from bytes, by format.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use super::{MeshIoError, gltf_read, obj_read, stl};
+use super::files::{FileSource, FileSystem, Layered, NoFiles, shared_files};
+use super::{LoadWarning, MeshIoError, WarningKind, gltf, obj, stl};
 use crate::TriMesh;
+use crate::model::{Model, ModelError};
 
 /// The mesh file formats shatter reads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum MeshFormat {
-    /// Wavefront OBJ (polygons are triangulated).
+    /// Wavefront OBJ, with its MTL material libraries.
     Obj,
     /// STL, ASCII or binary (detected from the content).
     Stl,
-    /// glTF 2.0 JSON with embedded (data URI) or external buffers.
+    /// glTF 2.0 JSON with embedded (data URI) or external buffers and images.
     Gltf,
     /// Binary glTF 2.0.
     Glb,
@@ -36,18 +38,144 @@ impl MeshFormat {
             _ => None,
         }
     }
+
+    /// The format's usual name (`OBJ`, `STL`, `glTF`, `GLB`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Obj => "OBJ",
+            Self::Stl => "STL",
+            Self::Gltf => "glTF",
+            Self::Glb => "GLB",
+        }
+    }
 }
 
-/// Loads a triangle mesh from an `.obj`, `.stl` (ASCII or binary), `.gltf` or `.glb`
-/// file. OBJ: every object and group, polygons fan-triangulated. STL: the triangle soup
-/// is welded (exactly equal corners merged). glTF: every triangle primitive (lists,
-/// strips, fans) of every mesh instanced in the default scene (or the first, or every
-/// mesh if there is no scene), with the node transforms applied. The mesh is not
+/// The most triangles a file may produce (after triangulating polygons and instancing
+/// glTF meshes at every node that uses them): a model of this many triangles with every
+/// attribute takes about 2.5 GB.
+pub const MAX_TRIANGLES: usize = 20_000_000;
+
+/// A model read from a file, with what the reader tolerated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadedModel {
+    /// The model (see [`Model`]; it passes [`Model::check`]).
+    pub model: Model,
+    /// What was skipped, missing or repaired while reading, in the order met.
+    pub warnings: Vec<LoadWarning>,
+}
+
+/// What a reader works with: the file's name, where its references are resolved, the
+/// files it may read, and the warnings so far.
+pub(crate) struct ReadContext<'a> {
+    /// The main file's name (as given), for messages.
+    pub path: &'a Path,
+    /// The folder references are resolved against.
+    pub dir: PathBuf,
+    files: &'a dyn FileSource,
+    pub warnings: Vec<LoadWarning>,
+}
+
+impl ReadContext<'_> {
+    /// The path of a file referenced as `reference` (relative to the main file's folder).
+    pub fn resolve(&self, reference: &Path) -> PathBuf {
+        if reference.is_absolute() {
+            reference.to_path_buf()
+        } else {
+            self.dir.join(reference)
+        }
+    }
+
+    /// Reads a referenced file.
+    pub fn read(&self, path: &Path) -> std::io::Result<Vec<u8>> {
+        self.files.read(path)
+    }
+
+    /// Records a warning, its message prefixed with the main file's name.
+    pub fn warn(&mut self, kind: WarningKind, count: usize, message: impl AsRef<str>) {
+        let message = format!("{}: {}", self.path.display(), message.as_ref());
+        self.warnings.push(LoadWarning::new(kind, count, message));
+    }
+}
+
+/// Loads a model — mesh, UVs, normals, colours, materials and their textures — from an
+/// `.obj` (with its MTL files), `.stl`, `.gltf` or `.glb` file. Files it refers to are
+/// read relative to its folder. Files registered in [`shared_files`] are read from
+/// memory before the file system. See `docs/formats.md` for what each reader takes.
+///
+/// ```
+/// use shatter_geom::{io, shapes};
+/// let dir = std::env::temp_dir().join("shatter-doc-load-model");
+/// std::fs::create_dir_all(&dir).unwrap();
+/// let path = dir.join("cube.stl");
+/// io::save_stl(&path, &shapes::cube(), io::StlFormat::Binary).unwrap();
+/// let loaded = io::load_model(&path).unwrap();
+/// assert_eq!(loaded.model.mesh.positions.len(), 8); // STL is welded
+/// assert_eq!(loaded.model.materials.len(), 1);
+/// assert!(loaded.warnings.is_empty());
+/// ```
+pub fn load_model(path: impl AsRef<Path>) -> Result<LoadedModel, MeshIoError> {
+    load_model_from(path, &Layered(shared_files(), FileSystem))
+}
+
+/// [`load_model`], reading the file and every file it refers to from `files`.
+///
+/// ```
+/// use shatter_geom::io::{self, MemoryFiles};
+/// let files = MemoryFiles::new();
+/// files.insert("dir/tri.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".to_vec());
+/// let loaded = io::load_model_from("dir/tri.obj", &files).unwrap();
+/// assert_eq!(loaded.model.mesh.triangles.len(), 1);
+/// ```
+pub fn load_model_from(
+    path: impl AsRef<Path>,
+    files: &dyn FileSource,
+) -> Result<LoadedModel, MeshIoError> {
+    let path = path.as_ref();
+    let format = MeshFormat::from_path(path).ok_or_else(|| MeshIoError::UnknownFormat {
+        path: path.to_path_buf(),
+    })?;
+    let bytes = files.read(path).map_err(|e| MeshIoError::io(path, e))?;
+    parse(&bytes, format, path, files)
+}
+
+/// Parses a model held in memory (a file picked in a browser, say). `name` is used in
+/// messages and to resolve references; nothing else is read: a reference to another file
+/// (an MTL, a texture, an external buffer) is a warning (or, for a buffer the geometry
+/// needs, an error). [`parse_model_with`] takes those files too.
+///
+/// ```
+/// use shatter_geom::io::{self, MeshFormat};
+/// let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+/// let tet = io::parse_model(obj, MeshFormat::Obj, "tet.obj").unwrap();
+/// assert!((tet.model.mesh.volume() - 1.0 / 6.0).abs() < 1e-12);
+/// ```
+pub fn parse_model(
+    bytes: &[u8],
+    format: MeshFormat,
+    name: impl AsRef<Path>,
+) -> Result<LoadedModel, MeshIoError> {
+    parse(bytes, format, name.as_ref(), &NoFiles)
+}
+
+/// [`parse_model`], reading the files the model refers to from `files` (relative to
+/// `name`'s folder; see [`MemoryFiles`](super::MemoryFiles) for how names are matched).
+pub fn parse_model_with(
+    bytes: &[u8],
+    format: MeshFormat,
+    name: impl AsRef<Path>,
+    files: &dyn FileSource,
+) -> Result<LoadedModel, MeshIoError> {
+    parse(bytes, format, name.as_ref(), files)
+}
+
+/// Loads the triangle mesh of a file: [`load_model`]'s mesh, without the attributes,
+/// materials and warnings. OBJ: every object and group, polygons ear-clipped. STL: the
+/// triangle soup is welded (exactly equal corners merged). glTF: every triangle primitive
+/// (lists, strips, fans) of every mesh instanced in the default scene (or the first, or
+/// every mesh if there is no scene), with the node transforms applied. The mesh is not
 /// validated as a solid: call [`TriMesh::validate_solid`] for that.
 ///
-/// Errors name the file and the problem, and for OBJ the line where it can be located.
-/// A file registered with [`add_memory_file`](super::add_memory_file) under this name is
-/// read from memory instead of the file system.
+/// Errors name the file and the problem, and for OBJ the line.
 ///
 /// ```
 /// use shatter_geom::{io, shapes};
@@ -62,32 +190,13 @@ impl MeshFormat {
 /// assert!(err.to_string().contains("missing.obj"));
 /// ```
 pub fn load_mesh(path: impl AsRef<Path>) -> Result<TriMesh, MeshIoError> {
-    let path = path.as_ref();
-    let format = MeshFormat::from_path(path).ok_or_else(|| MeshIoError::UnknownFormat {
-        path: path.to_path_buf(),
-    })?;
-    if let Some(bytes) = super::memory_file(path) {
-        return parse(&bytes, format, path, None);
-    }
-    let bytes = std::fs::read(path).map_err(|e| MeshIoError::io(path, e))?;
-    let base = path.parent().map(|p| {
-        if p.as_os_str().is_empty() {
-            Path::new(".")
-        } else {
-            p
-        }
-    });
-    parse(&bytes, format, path, base)
+    load_model(path).map(|l| l.model.mesh)
 }
 
-/// Parses a mesh held in memory (for example a file picked in a browser). `name` is used
-/// in error messages. A `.gltf` with external buffer files cannot be read this way.
+/// Parses the mesh of a file held in memory (see [`parse_model`]).
 ///
 /// ```
 /// use shatter_geom::io::{self, MeshFormat};
-/// let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
-/// let tet = io::parse_mesh(obj, MeshFormat::Obj, "tet.obj").unwrap();
-/// assert!((tet.volume() - 1.0 / 6.0).abs() < 1e-12);
 /// let err = io::parse_mesh(b"f 1 2 9\n", MeshFormat::Obj, "bad.obj").unwrap_err();
 /// assert!(err.to_string().starts_with("bad.obj: line 1:"));
 /// ```
@@ -96,24 +205,71 @@ pub fn parse_mesh(
     format: MeshFormat,
     name: impl AsRef<Path>,
 ) -> Result<TriMesh, MeshIoError> {
-    parse(bytes, format, name.as_ref(), None)
+    parse_model(bytes, format, name).map(|l| l.model.mesh)
 }
 
 fn parse(
     bytes: &[u8],
     format: MeshFormat,
     path: &Path,
-    base: Option<&Path>,
-) -> Result<TriMesh, MeshIoError> {
-    let mesh = match format {
-        MeshFormat::Obj => obj_read::read_obj(bytes, path)?,
-        MeshFormat::Stl => stl::read_stl(bytes, path)?,
-        MeshFormat::Gltf | MeshFormat::Glb => gltf_read::read_gltf(bytes, path, base)?,
+    files: &dyn FileSource,
+) -> Result<LoadedModel, MeshIoError> {
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::new(),
     };
-    if mesh.triangles.is_empty() {
+    let mut cx = ReadContext {
+        path,
+        dir,
+        files,
+        warnings: Vec::new(),
+    };
+    let model = match format {
+        MeshFormat::Obj => obj::read_obj(bytes, &mut cx)?,
+        MeshFormat::Stl => stl::read_stl(bytes, &mut cx)?,
+        MeshFormat::Gltf | MeshFormat::Glb => gltf::read_gltf(bytes, &mut cx)?,
+    };
+    if model.mesh.triangles.is_empty() {
+        let prefix = format!("{}: ", path.display());
+        let skipped: Vec<&str> = cx
+            .warnings
+            .iter()
+            .filter(|w| w.kind == WarningKind::SkippedElements)
+            .map(|w| w.message.strip_prefix(&prefix).unwrap_or(&w.message))
+            .collect();
         return Err(MeshIoError::NoTriangles {
             path: path.to_path_buf(),
+            found: if skipped.is_empty() {
+                String::new()
+            } else {
+                format!(" ({})", skipped.join("; "))
+            },
         });
     }
-    Ok(mesh)
+    if let Some(v) = model.mesh.positions.iter().position(|p| !p.is_finite()) {
+        return Err(MeshIoError::NotFinite {
+            path: path.to_path_buf(),
+            vertex: v,
+        });
+    }
+    // The readers build consistent models; a failure here is a reader bug, reported as
+    // an error rather than passed on.
+    model.check().map_err(|e| match e {
+        ModelError::NotFinite {
+            attribute,
+            triangle,
+        } => MeshIoError::NotFiniteAttribute {
+            path: path.to_path_buf(),
+            attribute,
+            triangle,
+        },
+        other => MeshIoError::Inconsistent {
+            path: path.to_path_buf(),
+            message: other.to_string(),
+        },
+    })?;
+    Ok(LoadedModel {
+        model,
+        warnings: cx.warnings,
+    })
 }

@@ -1,12 +1,19 @@
-//! Mesh file import and export.
+//! Mesh and model file import and export.
 //!
-//! Import: [`load_mesh`] reads OBJ (`tobj`), STL ASCII and binary (`stl_io`) and glTF /
-//! GLB (`gltf`), dispatching on the extension; [`parse_mesh`] reads from memory, and
-//! [`add_memory_file`] registers named in-memory files that [`load_mesh`] reads first.
-//! Export: [`write_obj`] / [`save_obj`] (with an MTL file), [`write_glb`] /
-//! [`save_glb`] and [`write_stl`] / [`save_stl`]. OBJ and GLB exports take
-//! [`ExportObject`]s, whose triangles are flagged surface or interior and get the
-//! `surface` and `interior` materials.
+//! Import: [`load_model`] reads a [`Model`](crate::model::Model) — mesh, UVs, normals,
+//! colours, materials and textures — from OBJ (+ MTL), STL (ASCII and binary) and glTF /
+//! GLB 2.0, dispatching on the extension, with a list of [`LoadWarning`]s for what it
+//! tolerated; [`parse_model`] and [`parse_model_with`] read from memory, with the files
+//! the model refers to (MTL, textures, `.bin`) from a [`FileSource`] such as
+//! [`MemoryFiles`]. [`load_mesh`] and [`parse_mesh`] return the mesh alone.
+//! `docs/formats.md` lists what each reader takes.
+//!
+//! Export: [`write_obj`] / [`save_obj`] (with an MTL file; `*_with_materials` with the
+//! model's materials, textures copied next to the output), [`write_glb`] /
+//! [`save_glb`] (`*_with_materials`: images embedded) and [`write_stl`] / [`save_stl`].
+//! OBJ and GLB exports take [`ExportObject`]s, whose triangles are flagged surface or
+//! interior and may carry materials and corner attributes. [`GlbBuilder`] is the GLB
+//! writer's core, for writers that add nodes or animations of their own.
 //!
 //! ```
 //! use shatter_geom::{io::{self, ExportObject}, shapes};
@@ -21,20 +28,29 @@
 
 mod error;
 mod export;
-mod glb_write;
-mod gltf_read;
+mod files;
+mod gltf;
+mod image;
+mod inspect;
 mod load;
-mod memory_files;
-mod obj_read;
-mod obj_write;
+mod obj;
+mod polygon;
 mod stl;
+mod warning;
 
 pub use error::MeshIoError;
 pub use export::{
     ExportObject, INTERIOR_COLOR, INTERIOR_MATERIAL, SURFACE_COLOR, SURFACE_MATERIAL,
 };
-pub use glb_write::{save_glb, write_glb};
-pub use load::{MeshFormat, load_mesh, parse_mesh};
-pub use memory_files::{add_memory_file, memory_file, memory_file_names, remove_memory_file};
-pub use obj_write::{save_obj, write_mtl, write_obj};
+pub use files::{FileSource, FileSystem, Layered, MemoryFiles, NoFiles, shared_files};
+pub use gltf::{
+    GlbBuilder, save_glb, save_glb_with_materials, write_glb, write_glb_with_materials,
+};
+pub use inspect::{Inspection, MaterialReport, ShellReport, inspect};
+pub use load::{
+    LoadedModel, MAX_TRIANGLES, MeshFormat, load_mesh, load_model, load_model_from, parse_mesh,
+    parse_model, parse_model_with,
+};
+pub use obj::{save_obj, save_obj_with_materials, write_mtl, write_obj, write_obj_with_materials};
 pub use stl::{StlFormat, save_stl, write_stl};
+pub use warning::{LoadWarning, WarningKind};

@@ -1,0 +1,102 @@
+//! `shatter inspect` and batch `shatter fracture`, end to end through the real binary.
+#![allow(clippy::unwrap_used)]
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::shatter;
+
+fn corpus(rel: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/corpus")
+        .join(rel)
+}
+
+#[test]
+fn inspect_reports_shells_holes_materials_and_uvs() {
+    let dir = tempfile::tempdir().unwrap();
+    let spider = corpus("obj/spider/spider.obj");
+    let json = shatter(dir.path(), &["inspect", spider.to_str().unwrap(), "--json"])
+        .ok()
+        .json();
+    assert_eq!(json["triangles"], 1368);
+    assert_eq!(json["materials"].as_array().unwrap().len(), 4);
+    assert_eq!(json["uv_sets"], 1);
+    assert_eq!(json["solid"], false);
+    let shells = json["shells"].as_array().unwrap();
+    assert_eq!(shells.len(), 18);
+    let sphere = corpus("stl/sphereWithHole.stl");
+    let text = shatter(dir.path(), &["inspect", sphere.to_str().unwrap()])
+        .ok()
+        .stdout;
+    assert!(
+        text.contains("shells: 1 (0 closed, 1 open), 1 hole"),
+        "{text}"
+    );
+    let v1 = corpus("gltf1/BoxTextured_v1.gltf");
+    shatter(dir.path(), &["inspect", v1.to_str().unwrap()])
+        .bad_input(&["glTF 1.0 is not supported"]);
+}
+
+#[test]
+fn a_batch_writes_one_output_per_input_and_goes_on_past_a_failure() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let good = corpus("gltf/BoxTextured.glb");
+    let open = corpus("stl/sphereWithHole.stl");
+    let args = [
+        "fracture",
+        good.to_str().unwrap(),
+        open.to_str().unwrap(),
+        "--pieces",
+        "6",
+        "--out-dir",
+        out.to_str().unwrap(),
+        "--json",
+    ];
+    let run = shatter(dir.path(), &args);
+    // One file is open: bad input, exit 2, and the other is written.
+    assert_eq!(run.code, 2, "{}", run.stderr);
+    let summary = run.json();
+    assert_eq!(
+        (summary["succeeded"].as_u64(), summary["failed"].as_u64()),
+        (Some(1), Some(1))
+    );
+    assert!(
+        summary["results"][1]["error"]
+            .as_str()
+            .unwrap()
+            .contains("boundary edges")
+    );
+    assert!(out.join("BoxTextured.glb").is_file());
+    let on_disk: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(on_disk["exit_code"], 2);
+    let back = shatter_geom::io::load_mesh(out.join("BoxTextured.glb")).unwrap();
+    assert!(!back.triangles.is_empty());
+    // A folder of good files: exit 0, OBJ outputs.
+    let input = dir.path().join("in");
+    std::fs::create_dir_all(&input).unwrap();
+    std::fs::copy(corpus("obj/box.obj"), input.join("box.obj")).unwrap();
+    std::fs::copy(good, input.join("box.glb")).unwrap();
+    let out2 = dir.path().join("out2");
+    shatter(
+        dir.path(),
+        &[
+            "fracture",
+            input.to_str().unwrap(),
+            "--out-dir",
+            out2.to_str().unwrap(),
+            "--out-format",
+            "obj",
+            "--pieces",
+            "4",
+        ],
+    )
+    .ok();
+    // Two inputs named box: their outputs keep the input's extension apart.
+    assert!(out2.join("box_obj.obj").is_file() && out2.join("box_glb.obj").is_file());
+    // Several files without --out-dir: refused before any work.
+    shatter(dir.path(), &["fracture", input.to_str().unwrap()]).bad_input(&["--out-dir"]);
+}

@@ -1,0 +1,12 @@
+//! glTF 2.0 and GLB: the reader (accessors read and checked by hand) and the GLB writer.
+
+mod accessor;
+mod container;
+mod json;
+mod read;
+mod write;
+
+pub(crate) use read::read_gltf;
+pub use write::{
+    GlbBuilder, save_glb, save_glb_with_materials, write_glb, write_glb_with_materials,
+};
