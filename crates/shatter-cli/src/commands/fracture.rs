@@ -95,6 +95,10 @@ pub struct FractureArgs {
     /// Print one JSON object with counts, volumes and the time.
     #[arg(long)]
     pub json: bool,
+    /// With --json: also list every bond (`bond_list`: fragments a < b, area, centroid,
+    /// normal from a to b).
+    #[arg(long, requires = "json")]
+    pub json_bonds: bool,
 }
 
 /// Where the mesh comes from.
@@ -320,6 +324,24 @@ pub struct FractureReport {
     pub millis: f64,
     /// Warnings (also printed on stderr).
     pub warnings: Vec<String>,
+    /// Every bond, with `--json-bonds` only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bond_list: Option<Vec<BondEntry>>,
+}
+
+/// One bond of the `--json-bonds` list.
+#[derive(Debug, Serialize)]
+pub struct BondEntry {
+    /// First fragment (index into the fragments as written), `a < b`.
+    pub a: u32,
+    /// Second fragment.
+    pub b: u32,
+    /// Area of the shared face.
+    pub area: f64,
+    /// Centroid of the shared face.
+    pub centroid: [f64; 3],
+    /// Unit normal of the shared face, pointing from `a` to `b`.
+    pub normal: [f64; 3],
 }
 
 impl FractureReport {
@@ -340,6 +362,7 @@ impl FractureReport {
                 .sum(),
             millis,
             warnings,
+            bond_list: None,
         }
     }
 }
@@ -381,7 +404,17 @@ pub fn run(args: &FractureArgs) -> Result<(), CliError> {
     if let Some((path, format)) = &out {
         library::write_fracture(path, *format, &fracture)?;
     }
-    let report = FractureReport::new(&mesh, &fracture, millis, warnings);
+    let mut report = FractureReport::new(&mesh, &fracture, millis, warnings);
+    if args.json_bonds {
+        let entry = |b: &shatter_geom::fracture::Bond| BondEntry {
+            a: b.a,
+            b: b.b,
+            area: b.area,
+            centroid: b.centroid.to_array(),
+            normal: b.normal.to_array(),
+        };
+        report.bond_list = Some(fracture.bonds.iter().map(entry).collect());
+    }
     if args.json {
         println!(
             "{}",
