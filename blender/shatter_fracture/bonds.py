@@ -7,11 +7,11 @@ A bond is two fragments sharing a cut face (shatter's `--json-bonds`: fragment i
 Properties, on each fragment:
   - `shatter_fragment`: its index in shatter's output;
   - `shatter_bonded`: the indices of the fragments it is bonded to;
-  - `shatter_bond_area`: the shared areas (world units squared), in the same order.
+  - `shatter_bond_area`: the shared areas in world space, in the same order.
 Constraints: every fragment gets an active rigid body (convex hull, mass = density x
 volume), and every bond an empty at the face's centroid with a Fixed rigid-body
 constraint between the two fragments, breaking above `threshold` (times the area in
-world units squared when `scale_by_area`).
+world space, when `scale_by_area`).
 """
 
 import bpy
@@ -21,11 +21,20 @@ from .coords import from_gltf
 from .runner import ShatterError
 
 
-def write_properties(fragments, bonds, area_scale=1.0):
-    """Custom properties on every fragment of `fragments` ({index: object})."""
+def world_area(bond, linear):
+    """A bond's area in world space: `linear` (3x3) maps the mesh's local frame to the
+    world, and a planar area A with unit normal n becomes A |det L| |L^-T n|."""
+    n = Vector(from_gltf(bond["normal"]))
+    return float(bond["area"]) * abs(linear.determinant()) * (
+        linear.inverted_safe().transposed() @ n).length
+
+
+def write_properties(fragments, bonds, linear):
+    """Custom properties on every fragment of `fragments` ({index: object}); `linear`
+    as for `world_area`."""
     neighbours = {i: [] for i in fragments}
     for bond in bonds:
-        a, b, area = int(bond["a"]), int(bond["b"]), float(bond["area"]) * area_scale
+        a, b, area = int(bond["a"]), int(bond["b"]), world_area(bond, linear)
         if a in neighbours and b in neighbours:
             neighbours[a].append((b, area))
             neighbours[b].append((a, area))
@@ -43,19 +52,32 @@ def _ensure_world(context):
     return context.scene.rigidbody_world
 
 
+def _as_active(context, obj, op, **kw):
+    """Runs a rigid-body operator on `obj`: they act on the view layer's active object
+    (a context override of `object` is ignored), so it is made active for the call."""
+    layer = context.view_layer
+    previous = layer.objects.active
+    layer.objects.active = obj
+    try:
+        result = op(**kw)
+    finally:
+        layer.objects.active = previous
+    if result != {'FINISHED'}:
+        raise ShatterError("Blender's %s failed on %s" % (op.idname_py(), obj.name))
+
+
 def add_rigid_bodies(context, fragments, volumes, density):
     """Active rigid bodies (convex hull) with mass = density x world volume."""
     _ensure_world(context)
     for i, obj in fragments.items():
-        with context.temp_override(object=obj, active_object=obj, selected_objects=[obj]):
-            bpy.ops.rigidbody.object_add(type='ACTIVE')
+        _as_active(context, obj, bpy.ops.rigidbody.object_add, type='ACTIVE')
         rb = obj.rigid_body
         rb.collision_shape = 'CONVEX_HULL'
         rb.mass = max(density * volumes[i], 1e-6)
 
 
 def add_constraints(context, fragments, bonds, matrix, collection, threshold,
-                    scale_by_area=True, area_scale=1.0, size=0.05):
+                    scale_by_area=True, size=0.05):
     """One breakable Fixed constraint per bond whose two fragments exist; returns the
     constraint empties. `matrix` takes shatter's frame (Blender-local of the original)
     to world space."""
@@ -69,14 +91,12 @@ def add_constraints(context, fragments, bonds, matrix, collection, threshold,
         empty.empty_display_size = size
         empty.location = matrix @ Vector(from_gltf(bond["centroid"]))
         collection.objects.link(empty)
-        with context.temp_override(object=empty, active_object=empty,
-                                   selected_objects=[empty]):
-            bpy.ops.rigidbody.constraint_add(type='FIXED')
+        _as_active(context, empty, bpy.ops.rigidbody.constraint_add, type='FIXED')
         c = empty.rigid_body_constraint
         c.object1 = fragments[a]
         c.object2 = fragments[b]
         c.use_breaking = True
-        area = float(bond["area"]) * area_scale
+        area = world_area(bond, matrix.to_3x3())
         c.breaking_threshold = threshold * area if scale_by_area else threshold
         c.disable_collisions = True
         empty["shatter_bond"] = [a, b]

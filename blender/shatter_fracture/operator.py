@@ -129,7 +129,7 @@ class OBJECT_OT_shatter_fracture(bpy.types.Operator):
             col.prop(self, "scale_by_area")
             col.prop(self, "density")
 
-    def options(self, context):
+    def build_options(self, context):
         prefs = preferences(context)
         req = runner.Request(
             method=self.method.lower(), pieces=self.pieces, pattern=self.pattern.lower(),
@@ -155,7 +155,7 @@ class OBJECT_OT_shatter_fracture(bpy.types.Operator):
         wm.progress_begin(0, 100)
         try:
             outcome = pipeline.fracture_object(context, context.active_object,
-                                               self.options(context), progress)
+                                               self.build_options(context), progress)
         except runner.ShatterError as e:
             self.report({'ERROR'}, "Shatter Fracture: %s" % e)
             return {'CANCELLED'}

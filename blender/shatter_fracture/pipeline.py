@@ -170,10 +170,11 @@ def fracture_object(context, obj, options, progress: Optional[Callable] = None):
             if not os.path.isfile(out_path):
                 raise ShatterError("shatter reported success but wrote no fragments")
             progress(0.5, "importing %d fragments" % result.report["fragments"])
-            fragments = exchange.import_glb(out_path)
+            fragments, internal = exchange.import_glb(out_path)
     finally:
         bpy.data.meshes.remove(mesh)
     try:
+        result.report["internal_faces_removed"] = internal
         return _finish(context, obj, options, interior, original_materials, result,
                        fragments, progress, start)
     except Exception:
@@ -195,7 +196,6 @@ def _finish(context, obj, options, interior, original_materials, result, fragmen
         {k: v for k, v in result.report.items() if k != "bond_list"})
     matrix = obj.matrix_world.copy()
     det = abs(matrix.to_3x3().determinant())
-    area_scale = det ** (2.0 / 3.0)
     width = len(str(max(expected - 1, 0)))
     volumes = {}
     progress(0.7, "placing fragments")
@@ -217,14 +217,14 @@ def _finish(context, obj, options, interior, original_materials, result, fragmen
     bond_list = result.report.get("bond_list") or []
     if options.bonds != 'NONE':
         progress(0.8, "bonds")
-        bonds.write_properties(fragments, bond_list, area_scale)
+        bonds.write_properties(fragments, bond_list, matrix.to_3x3())
     if options.bonds == 'CONSTRAINTS':
         bonds.add_rigid_bodies(context, fragments, volumes, options.density)
         sub = _target_collection(context, "%s_constraints" % coll.name, parent=coll)
         size = 0.1 * (sum(volumes.values()) / max(expected, 1)) ** (1.0 / 3.0)
         constraints = bonds.add_constraints(
             context, fragments, bond_list, matrix, sub, options.break_threshold,
-            options.scale_by_area, area_scale, size)
+            options.scale_by_area, size)
 
     if options.keep_original:
         obj.hide_render = True

@@ -24,8 +24,10 @@ echo "# $(blender --version 2>/dev/null | head -1); $("$SHATTER" --version)"
 BLENDER_USER_SCRIPTS="$WORK/scripts" BLENDER_USER_CONFIG="$WORK/config" \
   blender -b --factory-startup --python-exit-code 1 --python "$HERE/test_addon.py" \
   -- "$WORK/shatter_fracture.zip" "$SHATTER" > "$WORK/blender.log" 2>&1 || {
-    grep -E '^(PASS|FAIL|SKIP)|Error|Traceback|blender-addon:' "$WORK/blender.log" | tail -80 >&2
-    echo "error: the Blender add-on test failed (full log above)" >&2
+    LOG=${TMPDIR:-/tmp}/shatter-blender-test.log
+    cp "$WORK/blender.log" "$LOG"
+    grep -E '^(FAIL|SKIP)|Error|Traceback|blender-addon:' "$LOG" | tail -80 >&2
+    echo "error: the Blender add-on test failed (Blender's whole output: $LOG)" >&2
     exit 1
   }
 grep -E '^(FAIL|SKIP)' "$WORK/blender.log" || true
