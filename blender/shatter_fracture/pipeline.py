@@ -165,8 +165,13 @@ def fracture_object(context, obj, options, progress: Optional[Callable] = None):
                 runner.write_points(seeds_path, req.seeds)
             args = runner.command_line(binary, mesh_path, out_path, req, seeds_path)
             progress(0.15, "running shatter")
-            result = runner.run(args, progress=lambda s: progress(
-                0.15 + 0.35 * min(s / 10.0, 1.0), "running shatter (%.1f s)" % s))
+            try:
+                result = runner.run(args, progress=lambda s: progress(
+                    0.15 + 0.35 * min(s / 10.0, 1.0), "running shatter (%.1f s)" % s))
+            except ShatterError as e:
+                # Name the object, not the temporary file shatter was given.
+                raise ShatterError(str(e).replace(
+                    mesh_path, "%s (with its modifiers applied)" % obj.name))
             if not os.path.isfile(out_path):
                 raise ShatterError("shatter reported success but wrote no fragments")
             progress(0.5, "importing %d fragments" % result.report["fragments"])

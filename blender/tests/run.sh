@@ -17,18 +17,17 @@ command -v blender >/dev/null || { echo "error: blender not on PATH (apt-get ins
 SHATTER=$(cd "$(dirname "$SHATTER")" && pwd)/$(basename "$SHATTER")
 
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/shatter-blender-test.XXXXXX")
+LOG=${TMPDIR:-/tmp}/shatter-blender-test.log  # Blender's whole output, kept
 trap 'rm -rf "$WORK"' EXIT
 python3 "$HERE/test_runner.py"
 bash "$ROOT/blender/package.sh" "$WORK/shatter_fracture.zip"
 echo "# $(blender --version 2>/dev/null | head -1); $("$SHATTER" --version)"
 BLENDER_USER_SCRIPTS="$WORK/scripts" BLENDER_USER_CONFIG="$WORK/config" \
   blender -b --factory-startup --python-exit-code 1 --python "$HERE/test_addon.py" \
-  -- "$WORK/shatter_fracture.zip" "$SHATTER" > "$WORK/blender.log" 2>&1 || {
-    LOG=${TMPDIR:-/tmp}/shatter-blender-test.log
-    cp "$WORK/blender.log" "$LOG"
+  -- "$WORK/shatter_fracture.zip" "$SHATTER" > "$LOG" 2>&1 || {
     grep -E '^(FAIL|SKIP)|Error|Traceback|blender-addon:' "$LOG" | tail -80 >&2
     echo "error: the Blender add-on test failed (Blender's whole output: $LOG)" >&2
     exit 1
   }
-grep -E '^(FAIL|SKIP)' "$WORK/blender.log" || true
-grep -E '^blender-addon:' "$WORK/blender.log"
+grep -E '^(FAIL|SKIP)' "$LOG" || true
+grep -E '^blender-addon:' "$LOG"
