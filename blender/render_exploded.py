@@ -1,7 +1,7 @@
 """Renders a model fractured by the add-on, its fragments pulled apart (Workbench, headless).
 
     blender -b --factory-startup --python blender/render_exploded.py -- \
-            ADDON.zip SHATTER OUT.png [PIECES=60] [SPREAD=0.35]
+            ADDON.zip SHATTER OUT.png [PIECES=60] [SPREAD=0.8]
 
 Installs the zip, imports shatter's bird (`shatter shape bird`), gives it a blue
 material, fractures it with Object > Quick Effects > Shatter Fracture (Voronoi, PIECES
@@ -27,7 +27,7 @@ def main():
         sys.exit(__doc__)
     zip_path, shatter, out = argv[0], argv[1], os.path.abspath(argv[2])
     pieces = int(argv[3]) if len(argv) > 3 else 60
-    spread = float(argv[4]) if len(argv) > 4 else 0.35
+    spread = float(argv[4]) if len(argv) > 4 else 0.8
 
     bpy.ops.preferences.addon_install(filepath=zip_path, overwrite=True)
     addon_utils.enable("shatter_fracture", default_set=True)
@@ -65,7 +65,7 @@ def main():
     cam_data.lens = 50
     cam = bpy.data.objects.new("Camera", cam_data)
     bpy.context.scene.collection.objects.link(cam)
-    direction = Vector((0.9, -1.6, 0.7)).normalized()
+    direction = Vector((0.8, -1.5, 1.2)).normalized()
     fov = 2 * math.atan(cam_data.sensor_width / (2 * cam_data.lens))
     cam.location = mid + direction * (radius / math.sin(fov / 2)) * 0.9
     cam.rotation_euler = (-direction).to_track_quat('-Z', 'Y').to_euler()

@@ -15,6 +15,7 @@ import bpy
 from .runner import ShatterError
 
 FRAGMENT_NAME = re.compile(r"^fragment_(\d+)(?:\.\d+)?$")
+_NORMAL = "shatter_normal"
 
 
 def _numpy_for_gltf():
@@ -167,9 +168,24 @@ def weld(mesh):
        shatter wrote equal float32 coordinates on both sides, so the copies are welded
        by exact position (bmesh's remove_doubles does not merge equal positions at tiny
        distances). UVs and normals live on the corners, so nothing is lost."""
+    # The file's normals, per corner and absolute: Blender stores custom normals relative
+    # to each corner's fan of faces, which welding changes, so they ride through the weld
+    # as a corner attribute and are set again afterwards.
+    custom = mesh.has_custom_normals
+    if custom:
+        mesh.calc_normals_split()
+        normals = [0.0] * (3 * len(mesh.loops))
+        mesh.loops.foreach_get("normal", normals)
     bm = bmesh.new()
     try:
         bm.from_mesh(mesh)
+        if custom:
+            layer = bm.loops.layers.float_vector.new(_NORMAL)
+            starts = [p.loop_start for p in mesh.polygons]
+            for face, start in zip(bm.faces, starts):
+                for j, loop in enumerate(face.loops):
+                    k = 3 * (start + j)
+                    loop[layer] = normals[k:k + 3]
         by_corners = {}
         for f in bm.faces:
             by_corners.setdefault(tuple(sorted(v.co.to_tuple() for v in f.verts)), []).append(f)
@@ -209,6 +225,13 @@ def weld(mesh):
         bm.to_mesh(mesh)
     finally:
         bm.free()
+    if custom:
+        attr = mesh.attributes[_NORMAL]
+        flat = [0.0] * (3 * len(attr.data))
+        attr.data.foreach_get("vector", flat)
+        mesh.attributes.remove(attr)
+        mesh.use_auto_smooth = True
+        mesh.normals_split_custom_set([flat[k:k + 3] for k in range(0, len(flat), 3)])
     mesh.update()
     return len(internal)
 
