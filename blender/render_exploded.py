@@ -73,7 +73,9 @@ def main():
     scene = bpy.context.scene
     scene.camera = cam
     scene.render.engine = 'BLENDER_WORKBENCH'
-    scene.render.resolution_x, scene.render.resolution_y = 1280, 800
+    scene.render.resolution_x, scene.render.resolution_y = 1000, 625
+    scene.render.image_settings.color_mode = 'RGB'
+    scene.render.image_settings.compression = 100
     scene.render.resolution_percentage = 100
     scene.render.film_transparent = False
     shading = scene.display.shading

@@ -20,14 +20,14 @@ bl_info = {
 if "bpy" in locals():  # re-running the script reloads the modules
     import importlib
 
-    for _name in ("runner", "coords", "seeds", "exchange", "materials", "bonds",
+    for _name in ("runner", "objfile", "seeds", "exchange", "materials", "bonds",
                   "pipeline", "preferences", "operator"):
         if _name in locals():
             importlib.reload(locals()[_name])
 
 import bpy
 
-from . import bonds, coords, exchange, materials, pipeline, preferences, runner, seeds  # noqa: F401
+from . import bonds, exchange, materials, objfile, pipeline, preferences, runner, seeds  # noqa: F401
 from . import operator
 
 CLASSES = (preferences.ShatterFracturePreferences, operator.OBJECT_OT_shatter_fracture)

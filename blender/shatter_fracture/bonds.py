@@ -2,7 +2,7 @@
 breakable "Fixed" constraints.
 
 A bond is two fragments sharing a cut face (shatter's `--json-bonds`: fragment indices
-`a < b`, the face's area, centroid and normal, in the mesh file's frame).
+`a < b`, the face's area, centroid and normal, in the object's local frame).
 
 Properties, on each fragment:
   - `shatter_fragment`: its index in shatter's output;
@@ -17,14 +17,13 @@ world space, when `scale_by_area`).
 import bpy
 from mathutils import Vector
 
-from .coords import from_gltf
 from .runner import ShatterError
 
 
 def world_area(bond, linear):
     """A bond's area in world space: `linear` (3x3) maps the mesh's local frame to the
     world, and a planar area A with unit normal n becomes A |det L| |L^-T n|."""
-    n = Vector(from_gltf(bond["normal"]))
+    n = Vector(bond["normal"])
     return float(bond["area"]) * abs(linear.determinant()) * (
         linear.inverted_safe().transposed() @ n).length
 
@@ -89,7 +88,7 @@ def add_constraints(context, fragments, bonds, matrix, collection, threshold,
         empty = bpy.data.objects.new("%s_bond_%d_%d" % (collection.name, a, b), None)
         empty.empty_display_type = 'PLAIN_AXES'
         empty.empty_display_size = size
-        empty.location = matrix @ Vector(from_gltf(bond["centroid"]))
+        empty.location = matrix @ Vector(bond["centroid"])
         collection.objects.link(empty)
         _as_active(context, empty, bpy.ops.rigidbody.constraint_add, type='FIXED')
         c = empty.rigid_body_constraint

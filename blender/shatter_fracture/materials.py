@@ -1,19 +1,21 @@
 """Giving the fragments their materials back.
 
 shatter's fragments carry a `surface` material on the original's faces and an
-`interior` one on the cut faces (with issue 13, the original's own materials by name).
-Blender's importer makes new materials of those names (`surface.001` when the name is
-taken); here each is replaced by the one it stands for:
+`interior` one on the cut faces (with issue 13, the original's own materials, by the
+names the add-on wrote). Blender's importer makes materials of those names (`.001`
+when the name is taken); here each is replaced by the one it stands for:
+  - an OBJ name the add-on gave one of the original's slots -> that material itself
+    (objfile.NO_MATERIAL -> none);
   - `interior` -> the interior material (chosen, or "Shatter Interior", made once);
-  - a name of one of the original's materials -> that material itself;
   - `surface` -> the original's first material (none if it has none).
-The imported stand-ins, and images only they used, are then deleted.
+The stand-ins the import made, and images only they used, are then deleted.
 """
 
 import re
 
 import bpy
 
+from .objfile import NO_MATERIAL
 from .runner import ShatterError
 
 DEFAULT_INTERIOR = "Shatter Interior"
@@ -45,37 +47,38 @@ def interior_material(name=""):
     return mat
 
 
-def reassign(fragments, original_materials, interior):
-    """Replaces the imported stand-in materials of every fragment; returns how many
-    fragments have interior faces. Deletes the stand-ins afterwards."""
+def reassign(fragments, original_materials, by_name, made, interior):
+    """Replaces the imported stand-in materials of every fragment and returns how many
+    fragments have interior faces. `by_name`: OBJ name -> the original's material (or
+    None for an empty slot); `made`: the materials the import created, deleted (with
+    images only they used) once unused."""
     originals = [m for m in original_materials if m is not None]
-    by_name = {m.name: m for m in originals}
     surface = originals[0] if originals else None
-    stand_ins = set()
+    by_name = dict(by_name)
+    by_name[NO_MATERIAL] = None
     with_interior = 0
     for obj in fragments:
         slots = obj.data.materials
         has_interior = False
         for i, mat in enumerate(slots):
             if mat is None or mat in originals or mat is interior:
+                has_interior |= mat is interior
                 continue
-            name = base_name(mat.name)
-            if name == "interior":
+            name = mat.name if mat.name in by_name else base_name(mat.name)
+            if name in by_name:
+                new = by_name[name]
+            elif name == "interior":
                 new = interior
                 has_interior = True
-            elif mat.name in by_name or name in by_name:
-                new = by_name.get(mat.name) or by_name[name]
             elif name == "surface":
                 new = surface
             else:
                 continue  # a material shatter carried over under a name we do not know
-            stand_ins.add(mat)
             slots[i] = new
         with_interior += has_interior
-    images = {img for mat in stand_ins if mat.node_tree
-              for node in mat.node_tree.nodes if getattr(node, "image", None)
-              for img in [node.image]}
-    for mat in stand_ins:
+    images = {node.image for mat in made if mat.node_tree
+              for node in mat.node_tree.nodes if getattr(node, "image", None)}
+    for mat in made:
         if mat.users == 0:
             bpy.data.materials.remove(mat)
     for img in images:

@@ -9,13 +9,14 @@ call (the benchmark in `bench/blender/` does):
                               Options(request=Request(method="voronoi", pieces=30)))
     print(len(outcome.fragments), outcome.report["bonds"])
 
-Steps: export the evaluated mesh (GLB, local frame), gather seed points or the impact
+Steps: export the evaluated mesh (OBJ, local frame), gather seed points or the impact
 point, run `shatter fracture`, import the fragments, give them the original's transform
 (and each its own centre as origin), their materials, the bond graph, and hide or remove
 the original. Any failure raises `runner.ShatterError` with a message for the user, and
 leaves no half-made fragments behind.
 """
 
+import contextlib
 import json
 import os
 import tempfile
@@ -27,7 +28,6 @@ import bpy
 from mathutils import Matrix, Vector
 
 from . import bonds, exchange, materials, runner, seeds
-from .coords import to_gltf
 from .runner import ShatterError
 
 
@@ -94,17 +94,6 @@ def _target_collection(context, name, parent=None):
     return coll
 
 
-def _original_materials(obj, mesh):
-    """The object's effective materials, put on the exported mesh as well (a slot
-    linked to the object would otherwise export the mesh's own material)."""
-    mats = [slot.material for slot in obj.material_slots]
-    if any(slot.link == 'OBJECT' for slot in obj.material_slots):
-        for i, mat in enumerate(mats):
-            if i < len(mesh.materials):
-                mesh.materials[i] = mat
-    return mats
-
-
 def _prepare_request(context, obj, options):
     req = options.request
     req.bonds = options.bonds != 'NONE'
@@ -115,12 +104,24 @@ def _prepare_request(context, obj, options):
     if options.source != 'PATTERN':
         depsgraph = context.evaluated_depsgraph_get()
         local = seeds.gather(depsgraph, obj, options.source, options.source_limit, req.seed)
-        req.seeds = [to_gltf(p) for p in local]
+        req.seeds = local
     elif req.pattern == "radial" and options.impact_from_cursor:
-        local = obj.matrix_world.inverted_safe() @ context.scene.cursor.location
-        req.impact = to_gltf(tuple(local))
+        req.impact = tuple(obj.matrix_world.inverted_safe() @ context.scene.cursor.location)
     req.check()
     return req
+
+
+@contextlib.contextmanager
+def _work_dir():
+    """A temporary folder for shatter's files; $SHATTER_FRACTURE_KEEP names a folder to
+    keep them in instead (to look at what shatter was given and wrote)."""
+    keep = os.environ.get("SHATTER_FRACTURE_KEEP")
+    if keep:
+        os.makedirs(keep, exist_ok=True)
+        yield keep
+    else:
+        with tempfile.TemporaryDirectory(prefix="shatter-blender-") as tmp:
+            yield tmp
 
 
 def _select(view_layer, objects):
@@ -155,12 +156,13 @@ def fracture_object(context, obj, options, progress: Optional[Callable] = None):
     try:
         if len(mesh.polygons) == 0:
             raise ShatterError("%s has no faces to fracture" % obj.name)
-        original_materials = _original_materials(obj, mesh)
-        with tempfile.TemporaryDirectory(prefix="shatter-blender-") as tmp:
-            mesh_path = os.path.join(tmp, "input.glb")
-            out_path = os.path.join(tmp, "fragments.glb")
+        # The object's effective materials (a slot may link one to the object).
+        original_materials = [slot.material for slot in obj.material_slots]
+        with _work_dir() as tmp:
+            mesh_path = os.path.join(tmp, "input.obj")
+            out_path = os.path.join(tmp, "fragments.obj")
             seeds_path = os.path.join(tmp, "seeds.xyz")
-            exchange.export_glb(context, mesh, mesh_path)
+            obj_names = exchange.export_obj(mesh, original_materials, mesh_path, obj.name)
             if req.seeds is not None:
                 runner.write_points(seeds_path, req.seeds)
             args = runner.command_line(binary, mesh_path, out_path, req, seeds_path)
@@ -175,13 +177,14 @@ def fracture_object(context, obj, options, progress: Optional[Callable] = None):
             if not os.path.isfile(out_path):
                 raise ShatterError("shatter reported success but wrote no fragments")
             progress(0.5, "importing %d fragments" % result.report["fragments"])
-            fragments, internal = exchange.import_glb(out_path)
+            fragments, internal, made = exchange.import_obj(out_path)
     finally:
         bpy.data.meshes.remove(mesh)
     try:
         result.report["internal_faces_removed"] = internal
-        return _finish(context, obj, options, interior, original_materials, result,
-                       fragments, progress, start)
+        by_name = dict(zip(obj_names, original_materials))
+        return _finish(context, obj, options, interior, (original_materials, by_name, made),
+                       result, fragments, progress, start)
     except Exception:
         for frag in fragments.values():
             if frag.name in bpy.data.objects:
@@ -189,8 +192,7 @@ def fracture_object(context, obj, options, progress: Optional[Callable] = None):
         raise
 
 
-def _finish(context, obj, options, interior, original_materials, result, fragments,
-            progress, start):
+def _finish(context, obj, options, interior, mats, result, fragments, progress, start):
     expected = int(result.report["fragments"])
     if sorted(fragments) != list(range(expected)):
         raise ShatterError("shatter reported %d fragments but the file holds %d"
@@ -216,7 +218,7 @@ def _finish(context, obj, options, interior, original_materials, result, fragmen
         frag.matrix_world = matrix @ local
         volumes[i] = abs(volume) * det
     ordered = [fragments[i] for i in range(expected)]
-    materials.reassign(ordered, original_materials, interior)
+    materials.reassign(ordered, *mats, interior)
 
     constraints = []
     bond_list = result.report.get("bond_list") or []

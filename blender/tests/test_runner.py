@@ -1,4 +1,4 @@
-"""Unit tests of the add-on's Blender-free modules (runner, coords), with plain python3.
+"""Unit tests of the add-on's Blender-free module (runner), with plain python3.
 
     python3 blender/tests/test_runner.py
 
@@ -15,7 +15,6 @@ import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..",
                                 "shatter_fracture"))
-import coords  # noqa: E402
 import runner  # noqa: E402
 from runner import Request, ShatterError  # noqa: E402
 
@@ -142,7 +141,6 @@ def main():
     suite = unittest.TestSuite()
     suite.addTests(unittest.defaultTestLoader.loadTestsFromModule(sys.modules[__name__]))
     suite.addTests(doctest.DocTestSuite(runner))
-    suite.addTests(doctest.DocTestSuite(coords))
     result = unittest.TextTestRunner(verbosity=1).run(suite)
     failed = len(result.failures) + len(result.errors)
     print("blender-runner: %d passed, %d failed" % (result.testsRun - failed, failed))
