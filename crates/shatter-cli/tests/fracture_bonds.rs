@@ -30,7 +30,10 @@ fn two_seeds_in_the_cube_give_one_bond_across_the_bisector() {
     let bond = &list[0];
     assert_eq!((bond["a"].as_u64(), bond["b"].as_u64()), (Some(0), Some(1)));
     // The unit cube's cross-section at x = 0: area 1, centred on the origin.
-    assert!((bond["area"].as_f64().unwrap() - 1.0).abs() < 1e-9, "{bond}");
+    assert!(
+        (bond["area"].as_f64().unwrap() - 1.0).abs() < 1e-9,
+        "{bond}"
+    );
     let v = |key: &str| -> Vec<f64> {
         bond[key]
             .as_array()
@@ -44,7 +47,9 @@ fn two_seeds_in_the_cube_give_one_bond_across_the_bisector() {
     // From fragment 0 (the seed at -x) to fragment 1 (+x), if the fragments keep the
     // seeds' order; either way the normal is ±x.
     let normal = v("normal");
-    assert!((normal[0].abs() - 1.0).abs() < 1e-9 && normal[1].abs() < 1e-9 && normal[2].abs() < 1e-9);
+    assert!(
+        (normal[0].abs() - 1.0).abs() < 1e-9 && normal[1].abs() < 1e-9 && normal[2].abs() < 1e-9
+    );
 }
 
 #[test]
