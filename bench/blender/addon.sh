@@ -53,7 +53,7 @@ print("# " + info)
 print("| operator (same Blender, same bird, same 100 seeds) | wall time per run | median | fragments | total volume |")
 print("|---|---|---|---|---|")
 med = {}
-for tool, label in (("cell", "Cell Fracture 0.2 (EXACT boolean)"), ("shatter", "Shatter Fracture (export, shatter, glTF import)")):
+for tool, label in (("cell", "Cell Fracture 0.2 (EXACT boolean)"), ("shatter", "Shatter Fracture (export, shatter, OBJ import)")):
     r = rows[tool]
     med[tool] = statistics.median(float(x["seconds"]) for x in r)
     extra = ""
