@@ -72,16 +72,9 @@ def mesh_volume(obj):
     return v
 
 
-def main():
-    mesh_path, seeds_path, out_path, solver = parse_args()
-
-    mod = addon_utils.enable("object_fracture_cell", default_set=True)
-    if mod is None:
-        sys.exit("error: the Cell Fracture add-on (object_fracture_cell) could not be enabled")
-    version = ".".join(map(str, mod.bl_info["version"]))
-    if solver is not None:
-        patch_solver(solver)
-
+def load_mesh(mesh_path):
+    """Empties the scene, imports MESH.obj without axis conversion and welds it; returns
+    the object and its vertex counts before and after welding."""
     # Empty scene (factory startup has a cube, a camera and a light).
     for obj in list(bpy.data.objects):
         bpy.data.objects.remove(obj, do_unlink=True)
@@ -103,29 +96,33 @@ def main():
     bm.to_mesh(target.data)
     bm.free()
     target.data.update()
-    v0 = mesh_volume(target)
+    return target, n_before, n_after
 
-    seeds = read_points(seeds_path)
+
+def add_seed_child(target, seeds):
+    """A mesh object whose vertices are the seeds, child of the target."""
     seed_mesh = bpy.data.meshes.new("seeds")
     seed_mesh.from_pydata(seeds, [], [])
     seed_obj = bpy.data.objects.new("seeds", seed_mesh)
     bpy.context.collection.objects.link(seed_obj)
     seed_obj.parent = target  # identity parent: the seeds stay where they are
+    return seed_obj
 
+
+def default_solver(obj):
+    probe = obj.modifiers.new(name="probe", type="BOOLEAN")
+    solver = probe.solver
+    obj.modifiers.remove(probe)
+    return solver
+
+
+def cell_fracture(target, seed_obj, remove_original=True):
+    """Runs the add-on on the target with the seeds' vertices; returns (wall seconds,
+    CPU seconds, the pieces made)."""
     bpy.ops.object.select_all(action="DESELECT")
     target.select_set(True)
     bpy.context.view_layer.objects.active = target
-
-    print("mesh %s: %d vertices (%d after welding), %d faces, volume %.6f; %d seeds"
-          % (mesh_path, n_before, n_after, len(target.data.polygons), v0, len(seeds)))
-
-    probe = seed_obj.modifiers.new(name="probe", type="BOOLEAN")
-    default_solver = probe.solver
-    seed_obj.modifiers.remove(probe)
-    used_solver = solver or default_solver
-
     random.seed(0)  # the add-on jitters cell vertices with random.random()
-    n_objects_before = len(bpy.data.objects)
     c0 = time.process_time()
     t0 = time.perf_counter()
     result = bpy.ops.object.add_fracture_cell_objects(
@@ -145,7 +142,7 @@ def main():
         mass_mode="UNIFORM",
         mass=1.0,
         use_recenter=False,
-        use_remove_original=True,
+        use_remove_original=remove_original,
         collection_name="",
         use_debug_points=False,
         use_debug_redraw=False,
@@ -155,9 +152,34 @@ def main():
     cpu_seconds = time.process_time() - c0
     if result != {"FINISHED"}:
         sys.exit("error: operator returned %s" % result)
-
     pieces = [o for o in bpy.context.selected_objects if o is not target and o is not seed_obj]
     pieces = [o for o in pieces if o.type == "MESH"]
+    return seconds, cpu_seconds, pieces
+
+
+def enable_cell_fracture(solver=None):
+    mod = addon_utils.enable("object_fracture_cell", default_set=True)
+    if mod is None:
+        sys.exit("error: the Cell Fracture add-on (object_fracture_cell) could not be enabled")
+    if solver is not None:
+        patch_solver(solver)
+    return ".".join(map(str, mod.bl_info["version"]))
+
+
+def main():
+    mesh_path, seeds_path, out_path, solver = parse_args()
+    version = enable_cell_fracture(solver)
+    target, n_before, n_after = load_mesh(mesh_path)
+    v0 = mesh_volume(target)
+    seeds = read_points(seeds_path)
+    seed_obj = add_seed_child(target, seeds)
+
+    print("mesh %s: %d vertices (%d after welding), %d faces, volume %.6f; %d seeds"
+          % (mesh_path, n_before, n_after, len(target.data.polygons), v0, len(seeds)))
+    used_solver = solver or default_solver(seed_obj)
+
+    n_objects_before = len(bpy.data.objects)
+    seconds, cpu_seconds, pieces = cell_fracture(target, seed_obj)
     nonempty = [o for o in pieces if len(o.data.polygons) > 0]
     volume = sum(mesh_volume(o) for o in nonempty)
     created = len(bpy.data.objects) - n_objects_before
@@ -174,4 +196,5 @@ def main():
                                  axis_up="Z", use_materials=False)
 
 
-main()
+if __name__ == "__main__":
+    main()

@@ -108,6 +108,10 @@ pub struct FractureArgs {
     /// Print one JSON object with counts, volumes and the time.
     #[arg(long)]
     pub json: bool,
+    /// With --json: also list every bond (`bond_list`: fragments a < b, area, centroid,
+    /// normal from a to b).
+    #[arg(long, requires = "json")]
+    pub json_bonds: bool,
 }
 
 /// Output format of a batch.
@@ -365,6 +369,24 @@ pub struct FractureReport {
     /// The process's peak resident set at the end (Linux only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub peak_rss_bytes: Option<u64>,
+    /// Every bond, with `--json-bonds` only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bond_list: Option<Vec<BondEntry>>,
+}
+
+/// One bond of the `--json-bonds` list.
+#[derive(Debug, Serialize)]
+pub struct BondEntry {
+    /// First fragment (index into the fragments as written), `a < b`.
+    pub a: u32,
+    /// Second fragment.
+    pub b: u32,
+    /// Area of the shared face.
+    pub area: f64,
+    /// Centroid of the shared face.
+    pub centroid: [f64; 3],
+    /// Unit normal of the shared face, pointing from `a` to `b`.
+    pub normal: [f64; 3],
 }
 
 impl FractureReport {
@@ -387,6 +409,7 @@ impl FractureReport {
             warnings,
             estimate: None,
             peak_rss_bytes: None,
+            bond_list: None,
         }
     }
 }
@@ -508,6 +531,16 @@ pub fn run(args: &FractureArgs, ctx: &Context) -> Result<(), CliError> {
     let mut report = FractureReport::new(&mesh, &fracture, millis, warnings);
     report.estimate = Some(estimate.into());
     report.peak_rss_bytes = memory::peak_rss_bytes();
+    if args.json_bonds {
+        let entry = |b: &shatter_geom::fracture::Bond| BondEntry {
+            a: b.a,
+            b: b.b,
+            area: b.area,
+            centroid: b.centroid.to_array(),
+            normal: b.normal.to_array(),
+        };
+        report.bond_list = Some(fracture.bonds.iter().map(entry).collect());
+    }
     if args.json {
         println!(
             "{}",
