@@ -110,6 +110,16 @@ impl Bar {
             self.bar.suspend(|| println!("{line}"));
         }
     }
+
+    /// Prints a line on standard error above the bar: diagnostics, which must not mix
+    /// with a command's output on standard output (e.g. `--json`).
+    pub fn eprintln(&self, line: String) {
+        if self.bar.is_hidden() {
+            eprintln!("{line}");
+        } else {
+            self.bar.suspend(|| eprintln!("{line}"));
+        }
+    }
 }
 
 impl Drop for Bar {

@@ -210,7 +210,7 @@ pub fn run(args: &FractureArgs, ctx: &Context) -> Result<(), CliError> {
                     let Some(input) = inputs.get(i) else { break };
                     let r = one(ctx, &config, input, &outputs[i], format);
                     if let Some(e) = &r.error {
-                        bar.println(format!("error: {e}"));
+                        bar.eprintln(format!("error: {e}"));
                     }
                     results.lock().unwrap_or_else(|p| p.into_inner())[i] = Some(r);
                     bar.tick(&input.display().to_string());

@@ -7,7 +7,7 @@ use rayon::prelude::*;
 
 use super::bonds::merge::merge_small;
 use super::kernel::convex::convex_pieces;
-use super::kernel::{Piece, SURFACE, mesh_scale};
+use super::kernel::{Piece, is_surface, mesh_scale};
 use super::methods::slice::{random_planes, slice};
 use super::methods::tetra::{SLIVER_VOLUME_FRACTION, TetraOptions, tetra};
 use super::methods::voronoi::voronoi;
@@ -174,7 +174,7 @@ pub(crate) fn fragment(p: &Piece) -> Fragment {
     let (volume, centroid, inertia) = mass_properties(&p.pos, &p.tris);
     Fragment {
         mesh: TriMesh::new(p.pos.clone(), p.tris.clone()),
-        interior: p.tags.iter().map(|&t| t != SURFACE).collect(),
+        interior: p.tags.iter().map(|&t| !is_surface(t)).collect(),
         convex_pieces: convex_pieces(p),
         volume,
         centroid,

@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use crate::fracture::Bond;
 use crate::fracture::kernel::cap::plane_frame;
-use crate::fracture::kernel::{Piece, SURFACE};
+use crate::fracture::kernel::{Piece, is_surface};
 
 /// One fragment's caps on a plane: fragment, 2D triangles, 2D bounds.
 type CapSide = (usize, Vec<[DVec2; 3]>, (DVec2, DVec2));
@@ -75,7 +75,7 @@ fn cap_groups(p: &Piece) -> Vec<CapGroup> {
         .tags
         .iter()
         .enumerate()
-        .filter(|&(_, &tag)| tag != SURFACE)
+        .filter(|&(_, &tag)| !is_surface(tag))
         .map(|(t, &tag)| (tag, t as u32))
         .collect();
     caps.sort_unstable();

@@ -7,7 +7,7 @@
 use glam::DVec3;
 
 use super::clip::split_keeping_faces;
-use super::{Piece, Plane, SURFACE};
+use super::{Piece, Plane, SURFACE, is_surface};
 use crate::util::{FastMap, UnionFind};
 
 /// Relative tolerance (of the fragment's size) for convexity tests.
@@ -170,7 +170,7 @@ fn concavity(p: &Piece, t: usize, nbr: &[[u32; 3]], tol: f64) -> Option<(f64, Pl
     // no vertex lies in front of it, and its edges with the surface are convex: only
     // edges between two surface triangles can be concave. (The decomposition's own
     // cuts are tagged as surface, so they are tested like it.)
-    if p.tags[t] != SURFACE {
+    if !is_surface(p.tags[t]) {
         return None;
     }
     let tri = p.tris[t];
@@ -182,7 +182,7 @@ fn concavity(p: &Piece, t: usize, nbr: &[[u32; 3]], tol: f64) -> Option<(f64, Pl
         let u = nbr[t][k];
         let (ea, eb) = (tri[k], tri[(k + 1) % 3]);
         if u != NO_NEIGHBOUR
-            && p.tags[u as usize] == SURFACE
+            && is_surface(p.tags[u as usize])
             && len2 > 0.0
             && let Some(o) = p.tris[u as usize].into_iter().find(|&v| v != ea && v != eb)
         {

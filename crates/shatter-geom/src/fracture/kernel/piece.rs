@@ -13,6 +13,13 @@ use crate::util::{FastMap, UnionFind};
 /// Tag of a triangle on the original surface (not created by a cut).
 pub(crate) const SURFACE: u64 = u64::MAX;
 
+/// Whether a triangle's tag marks the original surface (rather than a cut's cap).
+/// Code outside this module asks this, never compares with [`SURFACE`], so that a
+/// surface tag can carry more (e.g. the source triangle) without changing its callers.
+pub(crate) fn is_surface(tag: u64) -> bool {
+    tag == SURFACE
+}
+
 /// A closed solid being cut: welded positions, triangles and one tag per triangle, and
 /// possibly caps not yet triangulated ([`Face`]s; see [`Piece::close_faces`]).
 ///
