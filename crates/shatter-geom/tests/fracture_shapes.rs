@@ -120,10 +120,59 @@ pub fn weld(mesh: &TriMesh) -> (Vec<DVec3>, Vec<[u32; 3]>) {
     (pos, tris)
 }
 
-/// Asserts the mesh (after exact welding) is closed — every directed edge used as often
-/// as its reverse — without degenerate (repeated-vertex) triangles, and encloses a
-/// positive volume.
+/// Asserts the mesh (after exact welding) is a closed 2-manifold by edges — every
+/// directed edge used exactly once and its reverse exactly once, so every edge has two
+/// triangles wound opposite ways — without degenerate (repeated-vertex) triangles, and
+/// encloses a positive volume.
 pub fn assert_closed_outward(mesh: &TriMesh, what: &str) {
+    if known_tetra_defects() {
+        assert_closed_outward_by_count(mesh, what);
+        return;
+    }
+    let (_, tris) = weld(mesh);
+    let mut directed: HashMap<(u32, u32), usize> = HashMap::new();
+    for t in &tris {
+        assert!(
+            t[0] != t[1] && t[1] != t[2] && t[0] != t[2],
+            "{what}: degenerate triangle {t:?}"
+        );
+        for k in 0..3 {
+            *directed.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
+        }
+    }
+    for (&(a, b), &n) in &directed {
+        assert_eq!(
+            n, 1,
+            "{what}: edge {a}->{b} used {n} times in one direction"
+        );
+        assert_eq!(
+            directed.get(&(b, a)).copied().unwrap_or(0),
+            1,
+            "{what}: edge {a}->{b} has no reverse"
+        );
+    }
+    assert!(mesh.signed_volume() > 0.0, "{what}: not outward");
+}
+
+thread_local! {
+    static KNOWN_TETRA_DEFECTS: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Marks this test thread as checking tetra fragments, which still have a known defect
+/// (issue 14 part 2, open): a flat sliver tetrahedron merged into its group leaves two
+/// faces back to back, and groups may touch themselves along an edge. Such a thread
+/// checks closedness by counts (each edge used as often as its reverse) and skips the
+/// back-to-back check; everything else stays strict.
+pub fn accept_known_tetra_defects() {
+    KNOWN_TETRA_DEFECTS.with(|k| k.set(true));
+}
+
+fn known_tetra_defects() -> bool {
+    KNOWN_TETRA_DEFECTS.with(|k| k.get())
+}
+
+/// The weaker closedness check: every directed edge used as often as its reverse.
+fn assert_closed_outward_by_count(mesh: &TriMesh, what: &str) {
     let (_, tris) = weld(mesh);
     let mut directed: HashMap<(u32, u32), usize> = HashMap::new();
     for t in &tris {
@@ -303,12 +352,17 @@ pub fn check_fracture_with(
     }
     // Every interior face is shared: each side's interior area equals its bonds' area,
     // so every bond's area matches on both sides.
-    // (A fragment made of several shells — small pieces merged into a neighbour — also
-    // has interior faces back to back inside it: there, bonds cover at most its area.)
+    // (A fragment of several shells — a sliver merged into the piece nearest to it —
+    // may have caps facing a neighbour over less than the bonds' area threshold: there,
+    // bonds cover at most its interior area.)
     for (i, f) in fr.fragments.iter().enumerate() {
         let ia = interior_area(f);
         let tol = 1e-6 * ia.max(d * d * 1e-6);
-        if shells(&f.mesh) > 1 || has_back_to_back(f) {
+        assert!(
+            known_tetra_defects() || !has_back_to_back(f),
+            "{what}: fragment {i} has interior faces back to back"
+        );
+        if shells(&f.mesh) > 1 {
             assert!(
                 bonded_area[i] <= ia + tol,
                 "{what}: fragment {i} over-bonded"
@@ -383,19 +437,58 @@ pub fn shells(mesh: &TriMesh) -> usize {
 }
 
 /// Does the fragment have interior faces back to back (two interior triangles on the
-/// same plane facing opposite ways)? That happens where a small piece was merged in.
+/// same plane facing opposite ways, whose areas overlap)? That is what merging a small
+/// piece into a neighbour left when the faces they shared were kept.
 pub fn has_back_to_back(f: &Fragment) -> bool {
-    let planes: Vec<(DVec3, f64)> = (0..f.mesh.triangles.len())
+    let tris: Vec<(DVec3, f64, [DVec3; 3])> = (0..f.mesh.triangles.len())
         .filter(|&t| f.interior[t])
         .filter_map(|t| {
             let [a, b, c] = f.mesh.triangle(t);
             let n = (b - a).cross(c - a);
-            (n.length() > 0.0).then(|| (n.normalize(), n.normalize().dot(a)))
+            (n.length() > 0.0).then(|| (n.normalize(), n.normalize().dot(a), [a, b, c]))
         })
         .collect();
-    planes.iter().any(|&(n, d)| {
-        planes
-            .iter()
-            .any(|&(m, e)| (n + m).length() < 1e-9 && (d + e).abs() < 1e-9)
+    tris.iter().enumerate().any(|(i, &(n, d, p))| {
+        tris[i + 1..].iter().any(|&(m, e, q)| {
+            (n + m).length() < 1e-9 && (d + e).abs() < 1e-9 && overlap_2d(n, p, q)
+        })
     })
+}
+
+/// Whether two triangles of one plane (normal `n`) overlap with positive area: no edge
+/// direction of either separates them by more than rounding.
+fn overlap_2d(n: DVec3, p: [DVec3; 3], q: [DVec3; 3]) -> bool {
+    let u = n.any_orthonormal_vector();
+    let v = n.cross(u);
+    let flat = |t: [DVec3; 3]| t.map(|x| (x.dot(u), x.dot(v)));
+    let (p, q) = (flat(p), flat(q));
+    let size = p
+        .iter()
+        .chain(&q)
+        .map(|&(x, y)| x.abs().max(y.abs()))
+        .fold(0.0, f64::max);
+    let tol = 1e-9 * size.max(1e-300);
+    for t in [p, q] {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let axis = (b.1 - a.1, a.0 - b.0);
+            let len = (axis.0 * axis.0 + axis.1 * axis.1).sqrt();
+            if len == 0.0 {
+                continue;
+            }
+            let proj = |s: &[(f64, f64); 3]| {
+                s.iter()
+                    .map(|&(x, y)| (x * axis.0 + y * axis.1) / len)
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), w| {
+                        (lo.min(w), hi.max(w))
+                    })
+            };
+            let (a0, a1) = proj(&p);
+            let (b0, b1) = proj(&q);
+            if a1 <= b0 + tol || b1 <= a0 + tol {
+                return false;
+            }
+        }
+    }
+    true
 }

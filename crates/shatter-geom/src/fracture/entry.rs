@@ -100,7 +100,7 @@ pub fn fracture(mesh: &TriMesh, params: &FractureParams) -> Result<Fracture, Fra
                 DVec3::ONE
             };
             let (cells, bonds) = voronoi(&piece, &points, metric, eps);
-            finish_cut(cells, bonds, volume, &mut warnings)
+            finish_cut(cells, bonds, volume, eps, &mut warnings)
         }
         Method::Slice { pieces, planes } => {
             let planes = match planes {
@@ -123,7 +123,7 @@ pub fn fracture(mesh: &TriMesh, params: &FractureParams) -> Result<Fracture, Fra
                 }
             };
             let (pieces, bonds) = slice(&piece, &planes, eps);
-            finish_cut(pieces, bonds, volume, &mut warnings)
+            finish_cut(pieces, bonds, volume, eps, &mut warnings)
         }
     };
     let fragments: Vec<Fragment> = fragments;
@@ -149,12 +149,21 @@ fn finish_cut(
     pieces: Vec<Piece>,
     bonds: Vec<Bond>,
     volume: f64,
+    eps: f64,
     warnings: &mut Vec<String>,
 ) -> (Vec<Fragment>, Vec<Bond>) {
-    let (pieces, bonds, lonely) = merge_small(pieces, bonds, SLIVER_VOLUME_FRACTION * volume);
-    if lonely > 0 {
+    let (pieces, bonds, merged) = merge_small(pieces, bonds, SLIVER_VOLUME_FRACTION * volume, eps);
+    if merged.lonely > 0 {
         warnings.push(format!(
-            "{lonely} fragments below the sliver threshold had no other fragment to merge into"
+            "{} fragments below the sliver threshold had no other fragment to merge into",
+            merged.lonely
+        ));
+    }
+    if merged.unjoined > 0 {
+        warnings.push(format!(
+            "{} fragments below the sliver threshold were kept apart: joining them to a \
+             neighbour would not give a closed surface",
+            merged.unjoined
         ));
     }
     // Independent per fragment, so in parallel (order kept).

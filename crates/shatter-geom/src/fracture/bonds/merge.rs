@@ -1,33 +1,81 @@
 //! Merging fragments below the sliver threshold into a bonded neighbour, so that no
 //! tiny piece reaches the physics.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use glam::DVec3;
 
 use crate::fracture::Bond;
 use crate::fracture::kernel::Piece;
+use crate::fracture::kernel::union::union;
 use crate::util::UnionFind;
+
+/// What merging did beyond the plain case.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(crate) struct Merged {
+    /// Small pieces left as they are: no other piece to merge into.
+    pub lonely: usize,
+    /// Small pieces left as they are because no union with a neighbour is a closed
+    /// 2-manifold (they touch it along an edge only, or their caps overlap in part).
+    pub unjoined: usize,
+}
 
 /// Merges every piece whose volume is below `min_volume` into the bonded neighbour it
 /// shares the largest area with (repeatedly, smallest first), or, with no bonded
-/// neighbour, into the piece nearest to it. A merged fragment is the union of its
-/// closed shells (each still closed and outward; the faces they share are kept, back to
-/// back). Returns the new pieces, bonds (remapped, each pair once) and the number of
-/// small pieces left (only when there is no other piece to merge into).
+/// neighbour, into the piece nearest to it. A merged fragment is the [`union`] of its
+/// pieces: the caps they share cancel, so it is a closed 2-manifold again. A union
+/// that would not be one is not made; the next neighbour is tried, and a piece no
+/// neighbour takes is kept as it is (counted in [`Merged`]). Returns the new pieces,
+/// bonds (remapped, each pair once) and what was left unmerged.
 pub(crate) fn merge_small(
     pieces: Vec<Piece>,
     bonds: Vec<Bond>,
     min_volume: f64,
-) -> (Vec<Piece>, Vec<Bond>, usize) {
+    eps: f64,
+) -> (Vec<Piece>, Vec<Bond>, Merged) {
     let n = pieces.len();
     let mut vol: Vec<f64> = pieces.iter().map(Piece::volume).collect();
     if vol.iter().all(|&v| v >= min_volume) {
-        return (pieces, bonds, 0);
+        return (pieces, bonds, Merged::default());
     }
     let mut uf = UnionFind::new(n);
+    // Each group's surface, held by its root.
+    let mut geometry: Vec<Option<Piece>> = pieces.into_iter().map(Some).collect();
+    // Pairs of groups (by their pieces' ids at the time) whose union failed.
+    let mut refused: BTreeSet<(usize, usize)> = BTreeSet::new();
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&a, &b| vol[a].total_cmp(&vol[b]).then(a.cmp(&b)));
+    let join = |g: usize,
+                h: usize,
+                uf: &mut UnionFind,
+                geometry: &mut Vec<Option<Piece>>,
+                vol: &mut Vec<f64>,
+                refused: &mut BTreeSet<(usize, usize)>|
+     -> bool {
+        let key = (g.min(h), g.max(h));
+        if refused.contains(&key) {
+            return false;
+        }
+        let (Some(pg), Some(ph)) = (geometry[g].as_ref(), geometry[h].as_ref()) else {
+            return false;
+        };
+        match union(&[ph, pg], eps) {
+            Ok(joined) => {
+                let v = vol[g] + vol[h];
+                geometry[g] = None;
+                geometry[h] = None;
+                uf.union(g, h);
+                let r = uf.find(g);
+                vol[r] = v;
+                geometry[r] = Some(joined);
+                true
+            }
+            Err(_) => {
+                refused.insert(key);
+                false
+            }
+        }
+    };
     loop {
         let mut changed = false;
         for &i in &order {
@@ -35,7 +83,7 @@ pub(crate) fn merge_small(
             if vol[g] >= min_volume {
                 continue;
             }
-            // Largest total bond area from group g to another group.
+            // Total bond area from group g to each other group, largest first.
             let mut area_to: BTreeMap<usize, f64> = BTreeMap::new();
             for b in &bonds {
                 let (ga, gb) = (uf.find(b.a as usize), uf.find(b.b as usize));
@@ -48,77 +96,65 @@ pub(crate) fn merge_small(
                     *area_to.entry(ga).or_default() += b.area;
                 }
             }
-            let best = area_to
-                .into_iter()
-                .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)));
-            if let Some((h, _)) = best {
-                let v = vol[g] + vol[h];
-                uf.union(g, h);
-                vol[uf.find(g)] = v;
-                changed = true;
+            let mut candidates: Vec<(usize, f64)> = area_to.into_iter().collect();
+            candidates.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+            for (h, _) in candidates {
+                if join(g, h, &mut uf, &mut geometry, &mut vol, &mut refused) {
+                    changed = true;
+                    break;
+                }
             }
         }
         if !changed {
             break;
         }
     }
-    // Small groups with no bonded neighbour: their faces with the rest are below the
-    // bonds' area threshold (a sliver cut off where a cell grazes the surface). Each is
-    // merged into the group with the vertex nearest its centroid, which it touches or
-    // nearly, so that nothing below the threshold reaches the physics.
+    // Small groups with no bonded neighbour that takes them: their faces with the rest
+    // are below the bonds' area threshold (a sliver cut off where a cell grazes the
+    // surface). Each is joined to the group with the vertex nearest its centroid, which
+    // it touches or nearly, if their union is closed.
+    let mut merged = Merged::default();
     for &i in &order {
         let g = uf.find(i);
-        if vol[g] >= min_volume {
+        if vol[g] >= min_volume || geometry[g].is_none() {
             continue;
         }
-        let (mut sum, mut count) = (DVec3::ZERO, 0usize);
-        for (j, p) in pieces.iter().enumerate() {
-            if uf.find(j) == g {
-                sum += p.pos.iter().copied().sum::<DVec3>();
-                count += p.pos.len();
-            }
-        }
-        let centroid = sum / count.max(1) as f64;
+        let Some(pg) = geometry[g].as_ref() else {
+            continue;
+        };
+        let centroid = pg.pos.iter().copied().sum::<DVec3>() / pg.pos.len().max(1) as f64;
         let mut nearest: Option<(f64, usize)> = None;
-        for (j, p) in pieces.iter().enumerate() {
-            let h = uf.find(j);
+        for (h, ph) in geometry.iter().enumerate() {
+            let Some(ph) = ph else { continue };
             if h == g {
                 continue;
             }
-            for q in &p.pos {
+            for q in &ph.pos {
                 let d2 = q.distance_squared(centroid);
                 if nearest.is_none_or(|(best, _)| d2 < best) {
                     nearest = Some((d2, h));
                 }
             }
         }
-        if let Some((_, h)) = nearest {
-            let v = vol[g] + vol[h];
-            uf.union(g, h);
-            vol[uf.find(g)] = v;
+        match nearest {
+            None => merged.lonely += 1,
+            Some((_, h)) => {
+                if !join(g, h, &mut uf, &mut geometry, &mut vol, &mut refused) {
+                    merged.unjoined += 1;
+                }
+            }
         }
     }
-    let mut lonely = 0;
     let mut new_id = vec![u32::MAX; n];
-    let mut out: Vec<Piece> = Vec::new();
     let mut slot = vec![usize::MAX; n];
-    for (i, piece) in pieces.into_iter().enumerate() {
+    let mut out: Vec<Piece> = Vec::new();
+    for (i, id) in new_id.iter_mut().enumerate() {
         let r = uf.find(i);
         if slot[r] == usize::MAX {
             slot[r] = out.len();
-            out.push(Piece::default());
-            if r == i && vol[r] < min_volume {
-                lonely += 1;
-            }
+            out.push(geometry[r].take().unwrap_or_default());
         }
-        let target = &mut out[slot[r]];
-        let base = target.pos.len() as u32;
-        target.pos.extend(piece.pos);
-        target
-            .tris
-            .extend(piece.tris.iter().map(|t| t.map(|k| k + base)));
-        target.tags.extend(piece.tags);
-        new_id[i] = slot[r] as u32;
+        *id = slot[r] as u32;
     }
     let mut acc: BTreeMap<(u32, u32), (f64, DVec3, DVec3)> = BTreeMap::new();
     for b in bonds {
@@ -148,5 +184,5 @@ pub(crate) fn merge_small(
             normal: nrm.normalize_or_zero(),
         })
         .collect();
-    (out, bonds, lonely)
+    (out, bonds, merged)
 }

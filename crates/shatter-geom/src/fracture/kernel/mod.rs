@@ -8,6 +8,7 @@ pub(crate) mod convex;
 mod face;
 mod piece;
 mod plane;
+pub(crate) mod union;
 
 #[cfg(test)]
 mod face_tests;
