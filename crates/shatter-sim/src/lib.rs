@@ -33,6 +33,7 @@ pub mod error;
 pub mod material;
 pub mod object;
 pub mod scene;
+pub mod stress;
 pub mod testing;
 pub mod world;
 
