@@ -44,4 +44,6 @@ pub use object::{
     ProjectileSpec,
 };
 pub use rapier3d::math::Pose;
-pub use world::{ObjectId, ProjectileView, RunState, SimEvent, Stats, World, WorldSettings};
+pub use world::{
+    BreakCause, ObjectId, ProjectileView, RunState, SimEvent, Stats, World, WorldSettings,
+};
