@@ -13,6 +13,7 @@
 //! | wood     | 40 MPa      | 20 MPa  | 6 MPa  | 0.1  | softwood (C24): 21 MPa compression, 14–24 MPa tension, 4 MPa shear along the grain |
 //! | ceramic  | 500 MPa     | 40 MPa  | 40 MPa | 0.3  | porcelain: compressive 300–1000 MPa, tensile 30–60 MPa |
 //! | ice      | 5 MPa       | 1 MPa   | 0.8 MPa| 0.4  | freshwater ice near 0 °C: compressive 5–25 MPa, tensile 0.7–3 MPa |
+//! | brick    | 8 MPa       | 0.1 MPa | 0.2 MPa| 0.3  | clay-brick masonry in general-purpose mortar (Eurocode 6): f_k 4–10 MPa, flexural bond f_xk1 0.1 MPa, initial shear f_vk0 0.1–0.3 MPa |
 //!
 //! `wear` is the health a bond loses to one hit at its full break force (see
 //! [`Material::wear`]).
@@ -79,10 +80,12 @@ pub struct Material {
 }
 
 /// The names of the presets, in a fixed order.
-pub const MATERIAL_NAMES: [&str; 6] = ["glass", "stone", "concrete", "wood", "ceramic", "ice"];
+pub const MATERIAL_NAMES: [&str; 7] = [
+    "glass", "stone", "concrete", "wood", "ceramic", "ice", "brick",
+];
 
 impl Material {
-    /// The preset called `name` (glass, stone, concrete, wood, ceramic, ice).
+    /// The preset called `name` (glass, stone, concrete, wood, ceramic, ice, brick).
     ///
     /// ```
     /// let glass = shatter_sim::Material::preset("glass").expect("a preset");
@@ -97,6 +100,7 @@ impl Material {
             "wood" => (40e6, 20e6, 6e6, 0.1),
             "ceramic" => (500e6, 40e6, 40e6, 0.3),
             "ice" => (5e6, 1e6, 0.8e6, 0.4),
+            "brick" => (8e6, 0.1e6, 0.2e6, 0.3),
             _ => return None,
         };
         let (density, friction, restitution, strength, method, pattern) = match name {
@@ -145,6 +149,14 @@ impl Material {
                 0.05,
                 0.1,
                 1_500.0,
+                FractureMethod::Voronoi,
+                Pattern::Uniform,
+            ),
+            "brick" => (
+                1800.0,
+                0.7,
+                0.05,
+                12_000.0,
                 FractureMethod::Voronoi,
                 Pattern::Uniform,
             ),

@@ -58,6 +58,9 @@ pub(crate) struct StressState {
     pub mask_version: u64,
     /// Forces (object frame) waiting for the next solve: explosions between steps.
     pub pending: Vec<(u32, glam::DVec3)>,
+    /// The impulses (world frame) of those explosions on the same fragments, given to
+    /// the pieces the solve breaks loose.
+    pub pending_impulses: std::collections::BTreeMap<u32, (glam::Vec3, f32)>,
 }
 
 impl StressState {
@@ -99,6 +102,7 @@ impl StressState {
             mask: vec![false; m],
             mask_version: u64::MAX,
             pending: Vec::new(),
+            pending_impulses: Default::default(),
         })
     }
 }

@@ -14,6 +14,10 @@
 //! compression below. The stiffness scale `E` cancels out of the stresses; only the
 //! ratio `G/E` matters.
 //!
+//! Dynamic forces (a step's contacts and explosions) are balanced by the island's inertia
+//! (inertia relief: every free node also takes `−m·ΣF/Σm`), so a hit stresses the
+//! material around it, not the supports; gravity goes to the anchors.
+//!
 //! Islands without an anchor are not solved: they have no static load path and fall
 //! freely. Settled islands (converged, loads and bonds unchanged) are skipped.
 
@@ -40,8 +44,8 @@ pub struct SolverSettings {
 impl Default for SolverSettings {
     fn default() -> Self {
         SolverSettings {
-            tolerance: 1e-6,
-            max_iterations: 400,
+            tolerance: 1e-5,
+            max_iterations: 1000,
             shear_ratio: 0.4,
         }
     }
@@ -154,6 +158,7 @@ pub struct StressSolver {
     settings: SolverSettings,
     springs: Vec<Spring>,
     mass: Vec<f64>,
+    centroid: Vec<DVec3>,
     anchored: Vec<bool>,
     /// The bond mask the islands were built from (`None`: not built yet).
     topology: Option<Vec<bool>>,
@@ -230,6 +235,7 @@ impl StressSolver {
             settings,
             springs,
             mass: nodes.iter().map(|node| node.mass).collect(),
+            centroid: nodes.iter().map(|node| node.centroid).collect(),
             anchored: graph.anchored().to_vec(),
             topology: None,
             islands: Vec::new(),
@@ -414,11 +420,19 @@ impl StressSolver {
         for &v in free {
             self.fu[v as usize] = self.mass[v as usize] * self.gravity;
         }
+        // Dynamic forces, balanced by the island's inertia (inertia relief): each free node
+        // also takes `−m·a` for the island's mean acceleration `a = ΣF / Σm`, so a short
+        // hit stresses the material around it rather than being carried to the anchors.
+        let mut dynamic = Vec::new();
         for &(v, f) in forces {
             if self.node_island.get(v as usize) == Some(&(i as u32)) && !self.anchored[v as usize]
             {
                 self.fu[v as usize] += f;
+                dynamic.push((v, f));
             }
+        }
+        if !dynamic.is_empty() {
+            self.relieve(free, &dynamic);
         }
         let norm_f = free
             .iter()
@@ -494,6 +508,39 @@ impl StressSolver {
         let converged = residual <= target;
         self.islands[i] = island;
         (iterations, relative, converged)
+    }
+
+    /// Inertia relief: adds `−m·(a + α × (x − c))` to every free node, the d'Alembert
+    /// forces of the island's rigid acceleration under the dynamic forces, so they have
+    /// no net force or moment left for the anchors.
+    fn relieve(&mut self, free: &[u32], dynamic: &[(u32, DVec3)]) {
+        let mass: f64 = free.iter().map(|&v| self.mass[v as usize]).sum();
+        if mass <= 0.0 {
+            return;
+        }
+        let c = free
+            .iter()
+            .map(|&v| self.mass[v as usize] * self.centroid[v as usize])
+            .sum::<DVec3>()
+            / mass;
+        let (mut force, mut torque) = (DVec3::ZERO, DVec3::ZERO);
+        for &(v, f) in dynamic {
+            force += f;
+            torque += (self.centroid[v as usize] - c).cross(f);
+        }
+        // Point-mass inertia about c: Σ m (|r|² I − r rᵀ).
+        let mut inertia = DMat3::ZERO;
+        for &v in free {
+            let r = self.centroid[v as usize] - c;
+            let m = self.mass[v as usize];
+            inertia += (DMat3::from_diagonal(DVec3::splat(r.length_squared())) - outer(r, r)) * m;
+        }
+        let a = force / mass;
+        let alpha = invert(inertia) * torque;
+        for &v in free {
+            let r = self.centroid[v as usize] - c;
+            self.fu[v as usize] -= self.mass[v as usize] * (a + alpha.cross(r));
+        }
     }
 
     /// `p = P·r` on the free nodes; returns `r·p`.

@@ -26,6 +26,9 @@ pub struct WorldSettings {
     pub max_speed: f32,
     /// Solver iterations (Rapier substeps) per step.
     pub solver_iterations: usize,
+    /// Run the stress solver on anchored cluster objects (gravity carried to the anchors,
+    /// bonds over the material's stress limits break). On by default.
+    pub stress: bool,
 }
 
 impl Default for WorldSettings {
@@ -40,6 +43,7 @@ impl Default for WorldSettings {
             max_debris: None,
             max_speed: 1000.0,
             solver_iterations: 4,
+            stress: true,
         }
     }
 }

@@ -18,6 +18,9 @@ use crate::world::step::{ContactHit, split_bodies};
 impl World {
     /// Solves the stresses of every anchored cluster object and breaks overloaded bonds.
     pub(crate) fn break_by_stress(&mut self, hits: &[ContactHit]) {
+        if !self.settings.stress {
+            return;
+        }
         let t0 = Instant::now();
         let dt = self.settings.dt;
         // Contact forces on fragments of fixed bodies, per object, in the world frame.
@@ -62,6 +65,7 @@ impl World {
                 state.mask_version = version;
             }
             let mut forces = std::mem::take(&mut state.pending);
+            let impulses = std::mem::take(&mut state.pending_impulses);
             if let Some(list) = contacts.get(&id.0) {
                 forces.extend(list.iter().map(|(f, v)| (*f, to_local * v.as_dvec3())));
             }
@@ -93,7 +97,7 @@ impl World {
                 live,
                 id.0,
                 bodies,
-                &BTreeMap::new(),
+                &impulses,
             );
         }
         self.stats.stress_solves += solves as u64;
@@ -128,8 +132,13 @@ impl World {
                 let x = d.length();
                 if x < radius {
                     let dir = if x > 1e-9 { d / x } else { DVec3::Y };
-                    let force = dir * power * (1.0 - x / radius) / dt;
-                    state.pending.push((f as u32, rotation.inverse() * force));
+                    let impulse = dir * power * (1.0 - x / radius);
+                    state.pending.push((f as u32, rotation.inverse() * impulse / dt));
+                    let entry = state
+                        .pending_impulses
+                        .entry(f as u32)
+                        .or_insert((Vec3::ZERO, 0.0));
+                    entry.0 += impulse.as_vec3();
                 }
             }
         }
