@@ -124,7 +124,8 @@ pub fn box_grid_fracture_with_voids(cells: [u32; 3], size: DVec3, voids: &[[u32;
         let (x, y, z) = (i % nx, (i / nx) % ny, i / (nx * ny));
         let at = |dx: i64, dy: i64, dz: i64| {
             let (a, b, c) = (x as i64 + dx, y as i64 + dy, z as i64 + dz);
-            let within = a >= 0 && b >= 0 && c >= 0 && a < nx as i64 && b < ny as i64 && c < nz as i64;
+            let within =
+                a >= 0 && b >= 0 && c >= 0 && a < nx as i64 && b < ny as i64 && c < nz as i64;
             within && !inside((a + nx as i64 * (b + ny as i64 * c)) as u32)
         };
         let neighbours = [

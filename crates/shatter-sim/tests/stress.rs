@@ -56,7 +56,11 @@ fn mid_slab(world: &World, id: ObjectId) -> Vec<usize> {
         .filter(|(_, f)| f.centroid.y > 0.8 && f.centroid.x > -3.2 && f.centroid.x < 2.4)
         .map(|(i, _)| i)
         .collect();
-    assert!(picked.len() >= 30, "the slab has {} middle blocks", picked.len());
+    assert!(
+        picked.len() >= 30,
+        "the slab has {} middle blocks",
+        picked.len()
+    );
     picked
 }
 
@@ -132,8 +136,14 @@ fn the_wall_above_the_blasted_hole_comes_down_and_the_rest_stands() {
             right_still += usize::from(d[f].length() < 0.05);
         }
     }
-    assert!(above_fell * 10 >= above * 9, "{above_fell} of {above} above the hole fell");
-    assert!(right_still * 10 >= right * 9, "{right_still} of {right} on the right stand");
+    assert!(
+        above_fell * 10 >= above * 9,
+        "{above_fell} of {above} above the hole fell"
+    );
+    assert!(
+        right_still * 10 >= right * 9,
+        "{right_still} of {right} on the right stand"
+    );
     assert!(world.stats().bonds_broken_by_stress > 0);
 }
 
@@ -145,11 +155,8 @@ fn held_by_one_brick(stress: bool) -> (World, ObjectId) {
         stress,
         ..WorldSettings::default()
     });
-    let fracture = box_grid_fracture_with_voids(
-        [6, 6, 1],
-        [1.8, 1.8, 0.3].into(),
-        &[[2, 0, 0, 6, 5, 1]],
-    );
+    let fracture =
+        box_grid_fracture_with_voids([6, 6, 1], [1.8, 1.8, 0.3].into(), &[[2, 0, 0, 6, 5, 1]]);
     let mut spec = ObjectSpec::from_fracture(fracture, Vec3::new(0.0, 0.9, 0.0));
     spec.material = Material::preset("brick").unwrap();
     spec.anchored = true;
@@ -168,12 +175,22 @@ fn a_block_held_by_one_brick_at_the_side_falls() {
             if in_block && stress {
                 assert!(d[f].y < -0.3, "block brick {f} did not fall: {}", d[f]);
             } else {
-                assert!(d[f].length() < 0.01, "brick {f} moved {} (stress {stress})", d[f]);
+                assert!(
+                    d[f].length() < 0.01,
+                    "brick {f} moved {} (stress {stress})",
+                    d[f]
+                );
             }
         }
         let events = world.take_events();
         let by_stress = events.iter().any(|e| {
-            matches!(e, SimEvent::BondsBroken { cause: BreakCause::Stress, .. })
+            matches!(
+                e,
+                SimEvent::BondsBroken {
+                    cause: BreakCause::Stress,
+                    ..
+                }
+            )
         });
         assert_eq!(by_stress, stress, "events {events:?}");
     }

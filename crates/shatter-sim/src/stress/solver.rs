@@ -329,7 +329,13 @@ impl StressSolver {
     /// last solve, in the graph's frame. Zero for bonds of islands without an anchor.
     pub fn bond_load(&self, b: u32) -> (DVec3, DVec3) {
         match self.springs.get(b as usize) {
-            Some(s) if self.is_supported(s.a) && self.topology.as_ref().is_some_and(|t| !t.get(b as usize).copied().unwrap_or(false)) => {
+            Some(s)
+                if self.is_supported(s.a)
+                    && self
+                        .topology
+                        .as_ref()
+                        .is_some_and(|t| !t.get(b as usize).copied().unwrap_or(false)) =>
+            {
                 s.load(&self.xu, &self.xt)
             }
             _ => (DVec3::ZERO, DVec3::ZERO),
@@ -338,7 +344,9 @@ impl StressSolver {
 
     /// Whether node `f` belongs to an anchored island (one that carries static load).
     pub fn is_supported(&self, f: u32) -> bool {
-        self.node_island.get(f as usize).is_some_and(|&i| i != u32::MAX)
+        self.node_island
+            .get(f as usize)
+            .is_some_and(|&i| i != u32::MAX)
     }
 
     /// Bonds over `limits` in the islands the last solve solved and converged, with the
@@ -366,7 +374,9 @@ impl StressSolver {
     fn rebuild(&mut self, graph: &BondGraph, broken: &[bool]) {
         self.islands.clear();
         self.node_island.iter_mut().for_each(|i| *i = u32::MAX);
-        self.stress.iter_mut().for_each(|s| *s = BondStress::default());
+        self.stress
+            .iter_mut()
+            .for_each(|s| *s = BondStress::default());
         let mut block_u = vec![DMat3::ZERO; self.mass.len()];
         let mut block_t = vec![DMat3::ZERO; self.mass.len()];
         for island in graph.islands(broken) {
@@ -425,8 +435,7 @@ impl StressSolver {
         // hit stresses the material around it rather than being carried to the anchors.
         let mut dynamic = Vec::new();
         for &(v, f) in forces {
-            if self.node_island.get(v as usize) == Some(&(i as u32)) && !self.anchored[v as usize]
-            {
+            if self.node_island.get(v as usize) == Some(&(i as u32)) && !self.anchored[v as usize] {
                 self.fu[v as usize] += f;
                 dynamic.push((v, f));
             }
@@ -500,11 +509,7 @@ impl StressSolver {
             let (f, m) = s.load(&self.xu, &self.xt);
             self.stress[b as usize] = s.stress(f, m);
         }
-        let relative = if norm_f > 0.0 {
-            residual / norm_f
-        } else {
-            0.0
-        };
+        let relative = if norm_f > 0.0 { residual / norm_f } else { 0.0 };
         let converged = residual <= target;
         self.islands[i] = island;
         (iterations, relative, converged)

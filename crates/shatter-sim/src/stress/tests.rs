@@ -187,7 +187,10 @@ fn a_hit_is_balanced_by_inertia_not_carried_to_the_anchors() {
     let (base, base_moment) = solver.bond_load(0);
     assert!(top.x.abs() > 0.5 * push.x, "top shear force {top}");
     assert!(base.length() < 0.05 * push.x, "base force {base}");
-    assert!(base_moment.length() < 0.05 * push.x * 0.2, "base moment {base_moment}");
+    assert!(
+        base_moment.length() < 0.05 * push.x * 0.2,
+        "base moment {base_moment}"
+    );
 }
 
 #[test]

@@ -9,10 +9,10 @@ use glam::{Quat, Vec3};
 use rapier3d::prelude::*;
 
 use crate::bonds::clusters::{self, Loads};
+use crate::bonds::live::LiveObject;
 use crate::bonds::tags::{Kind, tag, untag};
 use crate::bonds::{joints, split};
 use crate::object::{BondModel, ExplosionSpec, ProjectileShape, ProjectileSpec};
-use crate::bonds::live::LiveObject;
 use crate::world::settings::{BreakCause, SimEvent};
 use crate::world::state::{Action, ObjectId, Projectile, RunState, World};
 

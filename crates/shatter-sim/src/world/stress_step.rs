@@ -133,7 +133,9 @@ impl World {
                 if x < radius {
                     let dir = if x > 1e-9 { d / x } else { DVec3::Y };
                     let impulse = dir * power * (1.0 - x / radius);
-                    state.pending.push((f as u32, rotation.inverse() * impulse / dt));
+                    state
+                        .pending
+                        .push((f as u32, rotation.inverse() * impulse / dt));
                     let entry = state
                         .pending_impulses
                         .entry(f as u32)
