@@ -115,7 +115,6 @@ pub fn box_grid_fracture_with_voids(cells: [u32; 3], size: DVec3, voids: &[[u32;
     // Faces that now border a left-out cell are on the surface: mark them so (two
     // triangles per face, faces −x, +x, −y, +y, −z, +z as in `box_fragment`).
     let nz = cells[2].max(1);
-    let mut fragments = fragments;
     for (i, old) in index.iter().enumerate() {
         if *old == u32::MAX {
             continue;

@@ -298,17 +298,17 @@ impl StressSolver {
             ..SolveReport::default()
         };
         self.last_solved.clear();
-        for i in 0..self.islands.len() {
+        for (i, &loaded) in loaded.iter().enumerate() {
             let island = &self.islands[i];
-            if island.settled && !island.dynamic && !loaded[i] {
+            if island.settled && !island.dynamic && !loaded {
                 report.islands_skipped += 1;
                 continue;
             }
             let (iterations, residual, converged) = self.solve_island(i, forces);
             let island = &mut self.islands[i];
-            island.dynamic = loaded[i];
+            island.dynamic = loaded;
             island.converged = converged;
-            island.settled = converged && !loaded[i];
+            island.settled = converged && !loaded;
             report.islands_solved += 1;
             report.iterations += iterations;
             report.residual = report.residual.max(residual);
