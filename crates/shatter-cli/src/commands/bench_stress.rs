@@ -19,6 +19,12 @@ pub struct BenchStressArgs {
     /// Times to repeat the measurement (fresh solver each time).
     #[arg(long, default_value_t = 5)]
     pub runs: usize,
+    /// Most conjugate-gradient iterations per solve.
+    #[arg(long, default_value_t = SolverSettings::default().max_iterations)]
+    pub max_iterations: usize,
+    /// Relative residual at which a solve has converged.
+    #[arg(long, default_value_t = SolverSettings::default().tolerance)]
+    pub tolerance: f64,
     /// Print one JSON object.
     #[arg(long)]
     pub json: bool,
@@ -33,6 +39,8 @@ pub struct Timing {
     pub iterations: f64,
     /// Whether every run converged.
     pub converged: bool,
+    /// Largest relative residual left.
+    pub residual: f64,
 }
 
 /// What the benchmark measured.
@@ -79,6 +87,7 @@ fn timed(
         ms: t0.elapsed().as_secs_f64() * 1e3,
         iterations: report.iterations as f64,
         converged: report.converged,
+        residual: report.residual,
     }
 }
 
@@ -88,11 +97,18 @@ fn mean(samples: &[Timing]) -> Timing {
         ms: samples.iter().map(|t| t.ms).sum::<f64>() / n,
         iterations: samples.iter().map(|t| t.iterations).sum::<f64>() / n,
         converged: samples.iter().all(|t| t.converged),
+        residual: samples.iter().map(|t| t.residual).fold(0.0, f64::max),
     }
 }
 
 /// Runs `shatter bench stress`.
 pub fn run(args: &BenchStressArgs, ctx: &Context) -> Result<BenchStressReport, CliError> {
+    if !(args.tolerance.is_finite() && args.tolerance > 0.0 && args.tolerance < 1.0) {
+        return Err(CliError::input(format!(
+            "--tolerance must be in (0, 1), got {}",
+            args.tolerance
+        )));
+    }
     if args.runs == 0 || args.runs > 1000 {
         return Err(CliError::input(format!(
             "--runs must be in 1..=1000, got {}",
@@ -111,7 +127,12 @@ pub fn run(args: &BenchStressArgs, ctx: &Context) -> Result<BenchStressReport, C
     let mut samples: [Vec<Timing>; 5] = Default::default();
     for _ in 0..args.runs {
         ctx.progress.check()?;
-        let mut solver = StressSolver::new(&graph, SolverSettings::default());
+        let settings = SolverSettings {
+            max_iterations: args.max_iterations,
+            tolerance: args.tolerance,
+            ..SolverSettings::default()
+        };
+        let mut solver = StressSolver::new(&graph, settings);
         let mut broken = vec![false; bonds];
         samples[0].push(timed(&mut solver, &graph, &broken, &[]));
         samples[1].push(timed(&mut solver, &graph, &broken, &[]));
@@ -149,9 +170,10 @@ pub fn run(args: &BenchStressArgs, ctx: &Context) -> Result<BenchStressReport, C
             ("a bond broken", report.bond_broken),
         ] {
             println!(
-                "  {name:<18} {:>9.3} ms  {:>6.0} iterations{}",
+                "  {name:<18} {:>9.3} ms  {:>6.0} iterations  residual {:.1e}{}",
                 t.ms,
                 t.iterations,
+                t.residual,
                 if t.converged { "" } else { "  (not converged)" }
             );
         }
