@@ -32,6 +32,7 @@
 mod graph;
 mod limits;
 mod solver;
+mod spring;
 #[cfg(test)]
 mod tests;
 
