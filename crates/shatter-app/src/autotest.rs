@@ -3,7 +3,9 @@
 //! screenshots and writes `DIR/state.json`, then exits.
 //!
 //! Script: screenshot the scene; add an object through the Add Object panel; Start; fire
-//! at the wall; screenshot the debris; explode at the crate; Pause; Reset.
+//! at the wall; screenshot the debris; explode at the crate; Pause; Reset; load
+//! `assets/scenes/bridge.toml` through the Scene panel, Start, and screenshot the bridge
+//! before and after its pillar is blown away (the slab breaking off by stress).
 
 use std::path::PathBuf;
 
@@ -193,8 +195,51 @@ fn run_script(
             test.record.insert("after_reset".into(), stats_json(&stats));
             true
         }
+        // The bridge scene, loaded as a user would, through the Scene panel.
+        18 => {
+            ui_state.scene_file.path = concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/../../assets/scenes/bridge.toml"
+            )
+            .to_owned();
+            match ui_state.scene_file.load() {
+                Ok(cmd) => pending.0.push(cmd),
+                Err(e) => {
+                    test.record
+                        .insert("bridge_error".into(), json!(format!("{e:?}")));
+                }
+            }
+            true
+        }
+        19 => frames_in_step >= 10,
+        20 => {
+            pending.0.push(SimCommand::Start);
+            true
+        }
+        21 => sim_in_step >= 0.8,
+        22 => {
+            shot(&mut test, "07_bridge_standing.png");
+            test.record
+                .insert("bridge_before".into(), stats_json(&stats));
+            true
+        }
+        // The pillar is blown away at 1 s; the slab breaks off and falls.
+        23 => sim_in_step >= 0.35,
+        24 => {
+            shot(&mut test, "08_bridge_falling.png");
+            test.record
+                .insert("bridge_falling".into(), stats_json(&stats));
+            true
+        }
+        25 => sim_in_step >= 2.0,
+        26 => {
+            shot(&mut test, "09_bridge_fallen.png");
+            test.record
+                .insert("bridge_fallen".into(), stats_json(&stats));
+            true
+        }
         // Wait for the screenshots to reach the disk.
-        18 => test.shots.iter().all(|p| p.is_file()) && frames_in_step >= 5,
+        27 => test.shots.iter().all(|p| p.is_file()) && frames_in_step >= 5,
         _ => {
             write_state(&test);
             exit.write(AppExit::Success);

@@ -71,6 +71,8 @@ pub struct SimStats {
     pub bonds_total: usize,
     /// Bonds broken since start.
     pub bonds_broken: usize,
+    /// Of those, broken by impact, by stress and by damage.
+    pub bonds_broken_by: [usize; 3],
     /// Smoothed wall-clock time of one simulation step, in ms.
     pub step_ms: f64,
     /// Simulated seconds since start.
@@ -281,7 +283,7 @@ impl SimBridge {
                     Some(o) => format!("object {o}: a body diverged and was removed ({reason})"),
                     None => format!("a projectile diverged and was removed ({reason})"),
                 }),
-                SimEvent::Expired(_) => None,
+                SimEvent::Expired(_) | SimEvent::BondsBroken { .. } => None,
             })
             .collect()
     }
@@ -362,6 +364,11 @@ impl SimBridge {
             fragments: s.fragments,
             bonds_total: s.bonds_total,
             bonds_broken: s.bonds_broken,
+            bonds_broken_by: [
+                s.bonds_broken_by_impact,
+                s.bonds_broken_by_stress,
+                s.bonds_broken_by_damage,
+            ],
             step_ms: self.step_ms,
             time: s.time,
             running: state == RunState::Running,

@@ -26,8 +26,8 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use clap::{Parser, Subcommand};
 
 use crate::commands::{
-    bench_creation, bench_delaunay, bench_fracture, bench_step, fracture, inspect, shape, simulate,
-    study, tetrahedralize,
+    bench_creation, bench_delaunay, bench_fracture, bench_step, bench_stress, fracture, inspect,
+    shape, simulate, study, tetrahedralize,
 };
 use crate::context::Context;
 use crate::error::CliError;
@@ -73,6 +73,8 @@ enum BenchCommand {
     Fracture(bench_fracture::BenchFractureArgs),
     /// Time one simulation step of the 2,000-fragment wall for each bond model.
     Step(bench_step::BenchStepArgs),
+    /// Time the stress solver on a 20,000-bond graph.
+    Stress(bench_stress::BenchStressArgs),
     /// The thesis's creation time against random points, with CSV and plots.
     Creation(bench_creation::BenchCreationArgs),
 }
@@ -96,6 +98,7 @@ fn run(command: &Command, ctx: &Context) -> Result<(), CliError> {
         }
         Command::Bench(BenchCommand::Fracture(a)) => bench_fracture::run(a, ctx),
         Command::Bench(BenchCommand::Step(a)) => bench_step::run(a, ctx).map(|_| ()),
+        Command::Bench(BenchCommand::Stress(a)) => bench_stress::run(a, ctx).map(|_| ()),
         Command::Bench(BenchCommand::Creation(a)) => bench_creation::run(a, ctx),
         Command::Study(a) => study::run(a, ctx),
     }

@@ -81,3 +81,35 @@ fn bench_fracture_reports_the_thesis_and_blender_cases() {
         assert!(r["max_ms"].as_f64().unwrap() >= r["mean_ms"].as_f64().unwrap());
     }
 }
+
+#[test]
+fn bench_stress_reports_the_20000_bond_graph_and_skips_it_when_settled() {
+    let dir = tempfile::tempdir().unwrap();
+    // Few iterations: this test checks the report, not the speed (debug build).
+    let json = shatter(
+        dir.path(),
+        &[
+            "bench",
+            "stress",
+            "--runs",
+            "1",
+            "--max-iterations",
+            "30",
+            "--json",
+        ],
+    )
+    .ok()
+    .json();
+    assert!(json["bonds"].as_u64().unwrap() >= 20_000);
+    for key in ["cold", "hit", "after_hit", "bond_broken"] {
+        let it = json[key]["iterations"].as_f64().unwrap();
+        assert!((1.0..=30.0).contains(&it), "{key}: {json}");
+        assert!(json[key]["residual"].as_f64().unwrap() > 0.0, "{key}");
+    }
+    // 30 iterations do not reach the tolerance, so the second solve goes on from there
+    // instead of skipping a settled island.
+    assert_eq!(json["cold"]["converged"], false);
+    assert!(json["settled"]["iterations"].as_f64().unwrap() > 0.0);
+    shatter(dir.path(), &["bench", "stress", "--runs", "0"]).bad_input(&["--runs"]);
+    shatter(dir.path(), &["bench", "stress", "--tolerance", "2"]).bad_input(&["--tolerance"]);
+}

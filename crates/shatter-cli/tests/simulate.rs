@@ -31,6 +31,32 @@ fn explosion_scene_breaks_bonds_and_repeats_its_digest() {
 }
 
 #[test]
+fn the_bridge_reports_the_bonds_its_stress_broke() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = scene("bridge.toml");
+    let json = shatter(
+        dir.path(),
+        &["simulate", path.as_str(), "--seconds", "2", "--json"],
+    )
+    .ok()
+    .json();
+    let n = |k: &str| {
+        json[k]
+            .as_u64()
+            .unwrap_or_else(|| panic!("{k} missing: {json}"))
+    };
+    assert!(n("bonds_broken_by_stress") > 0, "{json}");
+    assert!(
+        n("bonds_broken_by_impact") > 0,
+        "the blast breaks bonds: {json}"
+    );
+    assert_eq!(
+        n("bonds_broken"),
+        n("bonds_broken_by_impact") + n("bonds_broken_by_stress") + n("bonds_broken_by_damage")
+    );
+}
+
+#[test]
 fn before_the_explosion_nothing_breaks() {
     let dir = tempfile::tempdir().unwrap();
     let path = scene("explosion.toml");

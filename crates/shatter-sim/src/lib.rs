@@ -33,6 +33,7 @@ pub mod error;
 pub mod material;
 pub mod object;
 pub mod scene;
+pub mod stress;
 pub mod testing;
 pub mod world;
 
@@ -43,4 +44,6 @@ pub use object::{
     ProjectileSpec,
 };
 pub use rapier3d::math::Pose;
-pub use world::{ObjectId, ProjectileView, RunState, SimEvent, Stats, World, WorldSettings};
+pub use world::{
+    BreakCause, ObjectId, ProjectileView, RunState, SimEvent, Stats, World, WorldSettings,
+};

@@ -1,5 +1,22 @@
-//! Material presets: density, friction, restitution, bond strength and the fracture method
-//! and pattern they look best with. Every value can be overridden.
+//! Material presets: density, friction, restitution, bond strength, stress limits, wear,
+//! and the fracture method and pattern they look best with. Every value can be overridden.
+//!
+//! The stress limits are the material's compressive, tensile and shear strengths in
+//! pascals, from handbook ranges (rounded, at the low end where the range is wide, since
+//! a fractured object's bonds are its weakest planes):
+//!
+//! | preset   | compression | tension | shear  | wear | source of the figures |
+//! |----------|-------------|---------|--------|------|------------------------|
+//! | glass    | 1000 MPa    | 40 MPa  | 30 MPa | 0.25 | annealed soda-lime glass: design tensile strength 30–60 MPa |
+//! | stone    | 100 MPa     | 6 MPa   | 12 MPa | 0.2  | limestone / granite: compressive 60–250 MPa, tensile 5–25 MPa |
+//! | concrete | 30 MPa      | 3 MPa   | 4 MPa  | 0.3  | C30 concrete: f_ck 30 MPa, f_ctm 2.9 MPa |
+//! | wood     | 40 MPa      | 20 MPa  | 6 MPa  | 0.1  | softwood (C24): 21 MPa compression, 14–24 MPa tension, 4 MPa shear along the grain |
+//! | ceramic  | 500 MPa     | 40 MPa  | 40 MPa | 0.3  | porcelain: compressive 300–1000 MPa, tensile 30–60 MPa |
+//! | ice      | 5 MPa       | 1 MPa   | 0.8 MPa| 0.4  | freshwater ice near 0 °C: compressive 5–25 MPa, tensile 0.7–3 MPa |
+//! | brick    | 8 MPa       | 0.1 MPa | 0.2 MPa| 0.3  | clay-brick masonry in general-purpose mortar (Eurocode 6): f_k 4–10 MPa, flexural bond f_xk1 0.1 MPa, initial shear f_vk0 0.1–0.3 MPa |
+//!
+//! `wear` is the health a bond loses to one hit at its full break force (see
+//! [`Material::wear`]).
 
 use serde::{Deserialize, Serialize};
 
@@ -50,13 +67,25 @@ pub struct Material {
     pub method: FractureMethod,
     /// Default Voronoi seed pattern.
     pub pattern: Pattern,
+    /// Compressive strength of a bond's face (Pa), for the stress solver.
+    pub compression: f32,
+    /// Tensile strength (Pa).
+    pub tension: f32,
+    /// Shear strength (Pa).
+    pub shear: f32,
+    /// Damage: a hit that loads a bond with a fraction `x < 1` of its break force lowers
+    /// the bond's health (1 when new) by `wear · x`; at health ≤ 0 it breaks. 0 turns
+    /// damage off.
+    pub wear: f32,
 }
 
 /// The names of the presets, in a fixed order.
-pub const MATERIAL_NAMES: [&str; 6] = ["glass", "stone", "concrete", "wood", "ceramic", "ice"];
+pub const MATERIAL_NAMES: [&str; 7] = [
+    "glass", "stone", "concrete", "wood", "ceramic", "ice", "brick",
+];
 
 impl Material {
-    /// The preset called `name` (glass, stone, concrete, wood, ceramic, ice).
+    /// The preset called `name` (glass, stone, concrete, wood, ceramic, ice, brick).
     ///
     /// ```
     /// let glass = shatter_sim::Material::preset("glass").expect("a preset");
@@ -64,6 +93,16 @@ impl Material {
     /// assert!(shatter_sim::Material::preset("cheese").is_none());
     /// ```
     pub fn preset(name: &str) -> Option<Material> {
+        let (compression, tension, shear, wear) = match name {
+            "glass" => (1000e6, 40e6, 30e6, 0.25),
+            "stone" => (100e6, 6e6, 12e6, 0.2),
+            "concrete" => (30e6, 3e6, 4e6, 0.3),
+            "wood" => (40e6, 20e6, 6e6, 0.1),
+            "ceramic" => (500e6, 40e6, 40e6, 0.3),
+            "ice" => (5e6, 1e6, 0.8e6, 0.4),
+            "brick" => (8e6, 0.1e6, 0.2e6, 0.3),
+            _ => return None,
+        };
         let (density, friction, restitution, strength, method, pattern) = match name {
             "glass" => (
                 2500.0,
@@ -113,6 +152,14 @@ impl Material {
                 FractureMethod::Voronoi,
                 Pattern::Uniform,
             ),
+            "brick" => (
+                1800.0,
+                0.7,
+                0.05,
+                12_000.0,
+                FractureMethod::Voronoi,
+                Pattern::Uniform,
+            ),
             _ => return None,
         };
         Some(Material {
@@ -122,7 +169,26 @@ impl Material {
             strength,
             method,
             pattern,
+            compression,
+            tension,
+            shear,
+            wear,
         })
+    }
+
+    /// The stress limits of the material's bonds.
+    ///
+    /// ```
+    /// let stone = shatter_sim::Material::preset("stone").expect("a preset");
+    /// let limits = stone.limits();
+    /// assert!(limits.tension < limits.shear && limits.shear < limits.compression);
+    /// ```
+    pub fn limits(&self) -> crate::stress::StressLimits {
+        crate::stress::StressLimits {
+            compression: f64::from(self.compression),
+            tension: f64::from(self.tension),
+            shear: f64::from(self.shear),
+        }
     }
 
     /// The preset called `name`, or [`SimError::UnknownMaterial`] naming `key`.
@@ -148,6 +214,15 @@ impl Material {
         };
         positive(self.density, "density")?;
         positive(self.strength, "strength")?;
+        positive(self.compression, "compression")?;
+        positive(self.tension, "tension")?;
+        positive(self.shear, "shear")?;
+        if !(self.wear.is_finite() && self.wear >= 0.0) {
+            return Err(SimError::invalid(
+                format!("{key}.wear"),
+                format!("must be >= 0, got {}", self.wear),
+            ));
+        }
         if !(self.friction.is_finite() && self.friction >= 0.0) {
             return Err(SimError::invalid(
                 format!("{key}.friction"),

@@ -74,6 +74,80 @@ pub fn box_grid_fracture(cells: [u32; 3], size: DVec3) -> Fracture {
     }
 }
 
+/// [`box_grid_fracture`] without the cells inside any of `voids` (boxes of cells
+/// `[x0, y0, z0, x1, y1, z1]`, `x0 <= x < x1` and so on). Fragments keep the grid order
+/// (renumbered without the gaps); bonds to a left-out cell are gone.
+///
+/// ```
+/// use shatter_sim::testing::box_grid_fracture_with_voids;
+/// // A 5 × 3 × 1 bridge: the span's lower two rows between the end columns left out.
+/// let f = box_grid_fracture_with_voids([5, 3, 1], [5.0, 3.0, 1.0].into(), &[[1, 0, 0, 4, 2, 1]]);
+/// assert_eq!(f.fragments.len(), 15 - 6);
+/// ```
+pub fn box_grid_fracture_with_voids(cells: [u32; 3], size: DVec3, voids: &[[u32; 6]]) -> Fracture {
+    let full = box_grid_fracture(cells, size);
+    if voids.is_empty() {
+        return full;
+    }
+    let [nx, ny, _] = cells.map(|c| c.max(1));
+    let inside = |i: u32| {
+        let (x, y, z) = (i % nx, (i / nx) % ny, i / (nx * ny));
+        voids.iter().any(|v| {
+            (v[0]..v[3]).contains(&x) && (v[1]..v[4]).contains(&y) && (v[2]..v[5]).contains(&z)
+        })
+    };
+    let mut index = vec![u32::MAX; full.fragments.len()];
+    let mut fragments = Vec::new();
+    for (i, f) in full.fragments.into_iter().enumerate() {
+        if !inside(i as u32) {
+            index[i] = fragments.len() as u32;
+            fragments.push(f);
+        }
+    }
+    let bonds = full
+        .bonds
+        .into_iter()
+        .filter_map(|b| {
+            let (a, c) = (index[b.a as usize], index[b.b as usize]);
+            (a != u32::MAX && c != u32::MAX).then_some(Bond { a, b: c, ..b })
+        })
+        .collect();
+    // Faces that now border a left-out cell are on the surface: mark them so (two
+    // triangles per face, faces −x, +x, −y, +y, −z, +z as in `box_fragment`).
+    let nz = cells[2].max(1);
+    for (i, old) in index.iter().enumerate() {
+        if *old == u32::MAX {
+            continue;
+        }
+        let i = i as u32;
+        let (x, y, z) = (i % nx, (i / nx) % ny, i / (nx * ny));
+        let at = |dx: i64, dy: i64, dz: i64| {
+            let (a, b, c) = (x as i64 + dx, y as i64 + dy, z as i64 + dz);
+            let within =
+                a >= 0 && b >= 0 && c >= 0 && a < nx as i64 && b < ny as i64 && c < nz as i64;
+            within && !inside((a + nx as i64 * (b + ny as i64 * c)) as u32)
+        };
+        let neighbours = [
+            at(-1, 0, 0),
+            at(1, 0, 0),
+            at(0, -1, 0),
+            at(0, 1, 0),
+            at(0, 0, -1),
+            at(0, 0, 1),
+        ];
+        let frag = &mut fragments[*old as usize];
+        for (face, n) in neighbours.iter().enumerate() {
+            frag.interior[2 * face] = *n;
+            frag.interior[2 * face + 1] = *n;
+        }
+    }
+    Fracture {
+        fragments,
+        bonds,
+        ..Default::default()
+    }
+}
+
 /// One axis-aligned box fragment from `lo` to `hi`. `on_boundary` flags the faces
 /// −x, +x, −y, +y, −z, +z that lie on the object's surface.
 pub fn box_fragment(lo: DVec3, hi: DVec3, on_boundary: [bool; 6]) -> Fragment {

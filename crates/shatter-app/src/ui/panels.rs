@@ -57,6 +57,13 @@ fn overlay(ui: &mut Ui, stats: &SimStats, fps: f64) {
                 "bonds broken",
                 format!("{} / {}", stats.bonds_broken, stats.bonds_total),
             ),
+            (
+                "impact/stress/damage",
+                format!(
+                    "{} / {} / {}",
+                    stats.bonds_broken_by[0], stats.bonds_broken_by[1], stats.bonds_broken_by[2]
+                ),
+            ),
             ("step", format!("{:.2} ms", stats.step_ms)),
             ("time", format!("{:.2} s", stats.time)),
         ];

@@ -5,6 +5,7 @@ pub mod bench_creation;
 pub mod bench_delaunay;
 pub mod bench_fracture;
 pub mod bench_step;
+pub mod bench_stress;
 pub mod fracture;
 pub mod inspect;
 pub mod shape;

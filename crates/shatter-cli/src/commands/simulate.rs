@@ -106,8 +106,14 @@ pub struct SimulateReport {
     pub fragments: usize,
     /// Bonds of all objects.
     pub bonds_total: usize,
-    /// Broken bonds.
+    /// Broken bonds (never decreases during a run; the sum of the three causes).
     pub bonds_broken: usize,
+    /// Bonds broken by a load over the break force (contacts, explosions, joints).
+    pub bonds_broken_by_impact: usize,
+    /// Bonds broken by the stress solver (stress over the material's limits).
+    pub bonds_broken_by_stress: usize,
+    /// Bonds broken when repeated weak hits wore their health to 0.
+    pub bonds_broken_by_damage: usize,
     /// Mean wall-clock milliseconds per step.
     pub millis_per_step: f64,
     /// Bodies removed because they diverged.
@@ -255,6 +261,9 @@ pub fn run(args: &SimulateArgs, ctx: &Context) -> Result<SimulateReport, CliErro
         fragments: stats.fragments,
         bonds_total: stats.bonds_total,
         bonds_broken: stats.bonds_broken,
+        bonds_broken_by_impact: stats.bonds_broken_by_impact,
+        bonds_broken_by_stress: stats.bonds_broken_by_stress,
+        bonds_broken_by_damage: stats.bonds_broken_by_damage,
         millis_per_step: if steps > 0 {
             total_ms / steps as f64
         } else {
@@ -286,12 +295,15 @@ pub fn run(args: &SimulateArgs, ctx: &Context) -> Result<SimulateReport, CliErro
         println!("{json}");
     } else {
         println!(
-            "steps {}  bodies {}  fragments {}  bonds {}/{} broken  {:.3} ms/step  diverged {}  digest {}",
+            "steps {}  bodies {}  fragments {}  bonds {}/{} broken ({} impact, {} stress, {} damage)  {:.3} ms/step  diverged {}  digest {}",
             report.steps,
             report.bodies,
             report.fragments,
             report.bonds_broken,
             report.bonds_total,
+            report.bonds_broken_by_impact,
+            report.bonds_broken_by_stress,
+            report.bonds_broken_by_damage,
             report.millis_per_step,
             report.diverged,
             report.digest

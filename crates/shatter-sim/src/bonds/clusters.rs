@@ -12,6 +12,10 @@
 //!   resting on the ground holds, a hard landing or a hit loads it;
 //! - an explosion of power `P` (N·s) and radius `r` loads each bond whose centroid is at
 //!   distance `x < r` with `P·(1 − x/r)/dt`.
+//!
+//! A load below the break force wears the bond's health (damage, [`break_loaded`]).
+//! Objects with anchored fragments also run the stress solver after each step
+//! (`world/stress_step.rs`): gravity and the step's loads carried down to the anchors.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -20,6 +24,7 @@ use rapier3d::prelude::*;
 
 use crate::bonds::live::{LiveObject, Surface};
 use crate::bonds::tags::{Kind, tag};
+use crate::world::BreakCause;
 
 /// Contact forces are reported only above this fraction of the break force.
 pub(crate) const EVENT_THRESHOLD_FRACTION: f32 = 0.25;
@@ -139,16 +144,29 @@ pub(crate) fn load_from_explosion(
     }
 }
 
-/// Breaks the bonds whose load exceeds the strength; returns the bodies to split, sorted.
+/// Breaks the bonds whose load exceeds the strength (cause: impact) and wears the others
+/// down: a load `x·strength` with `x < 1` takes `wear·x` of the bond's health, and a bond
+/// whose health reaches 0 breaks (cause: damage). Returns the bodies to split, sorted.
 pub(crate) fn break_loaded(live: &mut LiveObject, loads: &Loads) -> Vec<RigidBodyHandle> {
     let mut bodies = BTreeSet::new();
     for (&b, &load) in &loads.bonds {
-        if load > live.strength && !live.broken[b as usize] {
-            live.mark_broken(b as usize);
-            let a = live.prepared.fracture.bonds[b as usize].a;
-            if let Some(body) = live.body[a as usize] {
-                bodies.insert(body.into_raw_parts());
+        let i = b as usize;
+        if live.broken[i] {
+            continue;
+        }
+        let cause = if load > live.strength {
+            BreakCause::Impact
+        } else {
+            live.health[i] -= live.wear * (load / live.strength).max(0.0);
+            if live.health[i] > 0.0 {
+                continue;
             }
+            BreakCause::Damage
+        };
+        live.mark_broken_by(i, cause);
+        let a = live.prepared.fracture.bonds[i].a;
+        if let Some(body) = live.body[a as usize] {
+            bodies.insert(body.into_raw_parts());
         }
     }
     bodies

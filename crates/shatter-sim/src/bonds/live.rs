@@ -7,6 +7,8 @@ use rapier3d::prelude::*;
 
 use crate::bonds::tags::{Kind, tag};
 use crate::object::{BondModel, Prepared};
+use crate::stress::{BondGraph, SolverSettings, StressLimits, StressSolver};
+use crate::world::BreakCause;
 
 /// A breakable object's bodies, colliders, joints and bond states.
 #[derive(Debug, Clone)]
@@ -29,6 +31,80 @@ pub(crate) struct LiveObject {
     pub anchor_joints: Vec<(u32, ImpulseJointHandle)>,
     /// Number of broken bonds.
     pub bonds_broken: usize,
+    /// Broken bonds by cause: impact, stress, damage (see [`BreakCause::index`]).
+    pub broken_by: [usize; 3],
+    /// Per bond, its health: 1 when new, worn by hits below the break force (clusters).
+    pub health: Vec<f32>,
+    /// Health lost to a hit at the full break force (the material's wear).
+    pub wear: f32,
+    /// Stress solver state (clusters objects with anchored fragments).
+    pub stress: Option<Box<StressState>>,
+    /// Bumped whenever a bond breaks or a fragment loses its body.
+    pub version: u64,
+}
+
+/// The stress solver of an anchored cluster object.
+#[derive(Debug, Clone)]
+pub(crate) struct StressState {
+    /// The bond graph in the object's frame.
+    pub graph: BondGraph,
+    /// The solver with its last solution.
+    pub solver: StressSolver,
+    /// The material's limits.
+    pub limits: StressLimits,
+    /// Bonds that carry nothing: broken, or touching a fragment without a body.
+    pub mask: Vec<bool>,
+    /// [`LiveObject::version`] the mask was built at (`u64::MAX`: never).
+    pub mask_version: u64,
+    /// Forces (object frame) waiting for the next solve: explosions between steps.
+    pub pending: Vec<(u32, glam::DVec3)>,
+    /// The impulses (world frame) of those explosions on the same fragments, given to
+    /// the pieces the solve breaks loose.
+    pub pending_impulses: std::collections::BTreeMap<u32, (glam::Vec3, f32)>,
+}
+
+impl StressState {
+    /// The state for `prepared`, or `None` if nothing is anchored (then no island ever
+    /// carries a static load).
+    pub fn new(prepared: &Prepared, limits: StressLimits) -> Option<StressState> {
+        if !prepared.anchored.iter().any(|a| *a) {
+            return None;
+        }
+        let nodes = prepared
+            .fracture
+            .fragments
+            .iter()
+            .zip(&prepared.masses)
+            .map(|(f, m)| crate::stress::Node {
+                mass: f64::from(*m),
+                centroid: f.centroid,
+            })
+            .collect();
+        let bonds = prepared
+            .fracture
+            .bonds
+            .iter()
+            .map(|b| crate::stress::GraphBond {
+                a: b.a,
+                b: b.b,
+                area: b.area,
+                centroid: b.centroid,
+                normal: b.normal,
+            })
+            .collect();
+        let graph = BondGraph::new(nodes, bonds, prepared.anchored.clone()).ok()?;
+        let solver = StressSolver::new(&graph, SolverSettings::default());
+        let m = prepared.fracture.bonds.len();
+        Some(StressState {
+            graph,
+            solver,
+            limits,
+            mask: vec![false; m],
+            mask_version: u64::MAX,
+            pending: Vec::new(),
+            pending_impulses: Default::default(),
+        })
+    }
 }
 
 /// Material values a collider needs.
@@ -54,6 +130,11 @@ impl LiveObject {
             joints: vec![None; m],
             anchor_joints: Vec::new(),
             bonds_broken: 0,
+            broken_by: [0; 3],
+            health: vec![1.0; m],
+            wear: 0.0,
+            stress: None,
+            version: 0,
         }
     }
 
@@ -98,12 +179,28 @@ impl LiveObject {
         count
     }
 
-    /// Marks bond `b` broken (idempotent).
+    /// Marks bond `b` broken by an impact (idempotent).
     pub fn mark_broken(&mut self, b: usize) {
-        if !self.broken[b] {
-            self.broken[b] = true;
-            self.bonds_broken += 1;
+        self.mark_broken_by(b, BreakCause::Impact);
+    }
+
+    /// Marks bond `b` broken by `cause` (idempotent); returns whether it was intact.
+    pub fn mark_broken_by(&mut self, b: usize, cause: BreakCause) -> bool {
+        if self.broken[b] {
+            return false;
         }
+        self.broken[b] = true;
+        self.bonds_broken += 1;
+        self.broken_by[cause.index()] += 1;
+        self.version += 1;
+        true
+    }
+
+    /// Takes fragment `f`'s body away (removed debris, diverged body).
+    pub fn drop_fragment(&mut self, f: usize) {
+        self.body[f] = None;
+        self.colliders[f].clear();
+        self.version += 1;
     }
 }
 

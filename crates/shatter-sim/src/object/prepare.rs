@@ -10,7 +10,7 @@ use shatter_geom::{DMat3, DVec3, TriMesh};
 use crate::error::SimError;
 use crate::material::{FractureMethod, Pattern};
 use crate::object::spec::{FractureParams, FractureSource, ObjectSpec};
-use crate::testing::box_grid_fracture;
+use crate::testing::box_grid_fracture_with_voids;
 
 /// Simulation-ready geometry of one object, in its own frame with the scale applied.
 #[derive(Debug, Clone)]
@@ -40,7 +40,11 @@ pub fn resolve_fracture(spec: &ObjectSpec, key: &str) -> Result<Arc<Fracture>, S
                         format!("the grid method needs shape = \"cube\", got `{name}`"),
                     ));
                 }
-                return Ok(Arc::new(box_grid_fracture(params.grid, DVec3::ONE)));
+                return Ok(Arc::new(box_grid_fracture_with_voids(
+                    params.grid,
+                    DVec3::ONE,
+                    &params.grid_voids,
+                )));
             }
             let pattern = params.pattern.unwrap_or(spec.material.pattern);
             geom_fracture(name, params, method, pattern, key)
@@ -233,6 +237,7 @@ fn scale_bond(b: &Bond, s: DVec3) -> Bond {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testing::box_grid_fracture;
 
     #[test]
     fn scaling_a_grid_scales_volumes_and_areas() {

@@ -66,6 +66,9 @@ pub struct FractureParams {
     pub seed: u64,
     /// Grid cells for [`FractureMethod::Grid`].
     pub grid: [u32; 3],
+    /// Boxes of grid cells left out, `[x0, y0, z0, x1, y1, z1]` (from cell `x0` up to but
+    /// not including `x1`, ...): a bridge is a box with the space under its span left out.
+    pub grid_voids: Vec<[u32; 6]>,
 }
 
 impl Default for FractureParams {
@@ -80,6 +83,7 @@ impl Default for FractureParams {
             thesis_placement: false,
             seed: 1,
             grid: [4, 4, 4],
+            grid_voids: Vec::new(),
         }
     }
 }

@@ -64,6 +64,8 @@ pub struct ObjectEntry {
     /// Cells per axis for the grid method.
     #[serde(default, deserialize_with = "values::opt_spanned_ivec3")]
     pub grid: Option<Spanned<[i64; 3]>>,
+    /// Boxes of grid cells left out: `[[x0, y0, z0, x1, y1, z1], ...]`, cells `x0..x1` etc.
+    pub grid_voids: Option<Spanned<Vec<[i64; 6]>>>,
     /// The thesis's Random Vertices.
     pub random_vertices: Option<Spanned<i64>>,
     /// The thesis's Skip.

@@ -341,6 +341,23 @@ fn object(ctx: &Ctx, key: &str, o: &ObjectEntry) -> Result<ObjectSpec, SimError>
             v.map(|c| c as u32)
         }
     };
+    let mut grid_voids = Vec::new();
+    if let Some(v) = &o.grid_voids {
+        for (i, b) in v.get_ref().iter().enumerate() {
+            let ok = (0..3).all(|a| b[a] >= 0 && b[a] < b[a + 3] && b[a + 3] <= i64::from(grid[a]));
+            if !ok {
+                return Err(SimError::invalid(
+                    ctx.key(&format!("{key}.grid_voids[{i}]"), v),
+                    format!(
+                        "must be [x0, y0, z0, x1, y1, z1] with 0 <= x0 < x1 <= {} (and so on \
+                         for y and z, the grid's cell counts), got {b:?}",
+                        grid[0]
+                    ),
+                ));
+            }
+            grid_voids.push(b.map(|c| c as u32));
+        }
+    }
     let params = FractureParams {
         method,
         pattern,
@@ -369,6 +386,7 @@ fn object(ctx: &Ctx, key: &str, o: &ObjectEntry) -> Result<ObjectSpec, SimError>
         },
         seed: o.seed.unwrap_or(defaults.seed),
         grid,
+        grid_voids,
     };
     const SHAPES: [&str; 6] = ["cube", "capsule", "cylinder", "sphere", "torus", "bird"];
     let source = match (&o.shape, &o.mesh) {

@@ -76,6 +76,8 @@ impl World {
                 .to_string())),
                 pieces: Some(sp(params.pieces as i64)),
                 grid: Some(sp(params.grid.map(i64::from))),
+                grid_voids: (!params.grid_voids.is_empty())
+                    .then(|| sp(params.grid_voids.iter().map(|b| b.map(i64::from)).collect())),
                 random_vertices: Some(sp(params.random_vertices as i64)),
                 skip: Some(sp(params.skip as i64)),
                 center: Some(params.center),

@@ -5,7 +5,8 @@ mod run;
 mod settings;
 pub(crate) mod state;
 mod step;
+mod stress_step;
 
 pub use query::ProjectileView;
-pub use settings::{SimEvent, Stats, WorldSettings};
+pub use settings::{BreakCause, SimEvent, Stats, WorldSettings};
 pub use state::{ObjectId, RunState, World};

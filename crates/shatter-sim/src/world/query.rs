@@ -190,6 +190,7 @@ impl World {
                 self.apply_loads(BTreeMap::from([(id.0, loads)]));
             }
         }
+        self.report_breaks();
         self.update_counts();
     }
 

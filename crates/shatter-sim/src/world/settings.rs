@@ -26,6 +26,9 @@ pub struct WorldSettings {
     pub max_speed: f32,
     /// Solver iterations (Rapier substeps) per step.
     pub solver_iterations: usize,
+    /// Run the stress solver on anchored cluster objects (gravity carried to the anchors,
+    /// bonds over the material's stress limits break). On by default.
+    pub stress: bool,
 }
 
 impl Default for WorldSettings {
@@ -40,6 +43,7 @@ impl Default for WorldSettings {
             max_debris: None,
             max_speed: 1000.0,
             solver_iterations: 4,
+            stress: true,
         }
     }
 }
@@ -57,8 +61,22 @@ pub struct Stats {
     pub fragments: usize,
     /// Bonds of all objects.
     pub bonds_total: usize,
-    /// Broken bonds.
+    /// Broken bonds since start (never decreases during a run: bonds of objects that
+    /// expire or are deleted stay counted). The sum of the three causes below.
     pub bonds_broken: usize,
+    /// Bonds broken by a load over the break force (contacts, explosions, explicit breaks,
+    /// joints).
+    pub bonds_broken_by_impact: usize,
+    /// Bonds broken by the stress solver (a stress over the material's limits).
+    pub bonds_broken_by_stress: usize,
+    /// Bonds broken because repeated hits wore their health to 0.
+    pub bonds_broken_by_damage: usize,
+    /// Stress solves of anchored islands since start (settled islands are not solved).
+    pub stress_solves: u64,
+    /// Conjugate-gradient iterations of the stress solver in the last step.
+    pub stress_iterations: usize,
+    /// Wall-clock milliseconds the stress solver took in the last step.
+    pub stress_ms: f64,
     /// Bodies removed because their state diverged (NaN or runaway speed).
     pub diverged: usize,
     /// Debris bodies removed by the cap.
@@ -79,4 +97,49 @@ pub enum SimEvent {
     },
     /// An object reached the end of its lifetime and was removed.
     Expired(u32),
+    /// Bonds of an object broke during a step (one event per object and cause).
+    BondsBroken {
+        /// The object.
+        object: u32,
+        /// Why they broke.
+        cause: BreakCause,
+        /// How many.
+        count: usize,
+    },
+}
+
+/// Why a bond broke.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum BreakCause {
+    /// A load over the break force: a contact, an explosion, an explicit break, or a
+    /// joint's force.
+    Impact,
+    /// The stress solver: gravity and the step's loads put a stress over the material's
+    /// compression, tension or shear limit on the bond.
+    Stress,
+    /// Hits below the break force wore the bond's health down to 0.
+    Damage,
+}
+
+impl BreakCause {
+    /// All causes, in counter order.
+    pub const ALL: [BreakCause; 3] = [BreakCause::Impact, BreakCause::Stress, BreakCause::Damage];
+
+    /// Index into per-cause counters.
+    pub fn index(self) -> usize {
+        match self {
+            BreakCause::Impact => 0,
+            BreakCause::Stress => 1,
+            BreakCause::Damage => 2,
+        }
+    }
+
+    /// `impact`, `stress` or `damage`.
+    pub fn name(self) -> &'static str {
+        match self {
+            BreakCause::Impact => "impact",
+            BreakCause::Stress => "stress",
+            BreakCause::Damage => "damage",
+        }
+    }
 }

@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use rapier3d::prelude::*;
 
-use crate::bonds::live::{LiveObject, Surface, object_pose};
+use crate::bonds::live::{LiveObject, StressState, Surface, object_pose};
 use crate::bonds::tags::{Kind, tag};
 use crate::bonds::{clusters, joints};
 use crate::error::SimError;
@@ -85,6 +85,11 @@ pub struct World {
     pub(crate) events: Vec<SimEvent>,
     /// Debris bodies in the order they appeared: (object, body).
     pub(crate) debris: std::collections::VecDeque<(u32, RigidBodyHandle)>,
+    /// Broken bonds by cause of objects removed since start (expired or deleted), so the
+    /// counters never go down during a run.
+    pub(crate) retired: [usize; 3],
+    /// Per object, its broken-bond counts at the last [`SimEvent::BondsBroken`] report.
+    pub(crate) reported: BTreeMap<u32, [usize; 3]>,
 }
 
 impl World {
@@ -103,6 +108,8 @@ impl World {
             stats: Stats::default(),
             events: Vec::new(),
             debris: Default::default(),
+            retired: [0; 3],
+            reported: BTreeMap::new(),
         };
         world.rebuild();
         world
@@ -152,6 +159,8 @@ impl World {
         self.projectiles.clear();
         self.next_action = 0;
         self.debris.clear();
+        self.retired = [0; 3];
+        self.reported.clear();
         self.stats = Stats::default();
         self.events.clear();
         self.refresh();
@@ -173,6 +182,10 @@ impl World {
         let model = spec.bond_model.unwrap_or(default_model);
         let mut live =
             LiveObject::empty(model, record.prepared.clone(), spec.effective_break_force());
+        if model == BondModel::Clusters {
+            live.wear = spec.material.wear;
+            live.stress = StressState::new(&record.prepared, spec.material.limits()).map(Box::new);
+        }
         let pose = object_pose(spec.position, spec.rotation);
         let surface = Surface {
             density: spec.material.density,
@@ -195,6 +208,9 @@ impl World {
         let Some(live) = self.objects.get_mut(&id).and_then(|r| r.live.take()) else {
             return;
         };
+        for (r, n) in self.retired.iter_mut().zip(live.broken_by) {
+            *r += n;
+        }
         let mut bodies: Vec<RigidBodyHandle> = live.body.iter().flatten().copied().collect();
         bodies.sort_by_key(|h| h.into_raw_parts());
         bodies.dedup();
@@ -357,14 +373,20 @@ impl World {
     pub(crate) fn update_counts(&mut self) {
         let mut fragments = 0;
         let mut bonds_total = 0;
-        let mut bonds_broken = 0;
+        let mut by = self.retired;
         for record in self.objects.values() {
             bonds_total += record.prepared.fracture.bonds.len();
             if let Some(live) = &record.live {
                 fragments += live.alive_fragments();
-                bonds_broken += live.bonds_broken;
+                for (t, n) in by.iter_mut().zip(live.broken_by) {
+                    *t += n;
+                }
             }
         }
+        let bonds_broken = by.iter().sum();
+        self.stats.bonds_broken_by_impact = by[0];
+        self.stats.bonds_broken_by_stress = by[1];
+        self.stats.bonds_broken_by_damage = by[2];
         let ground = usize::from(self.ground.is_some());
         self.stats.bodies = self.physics.bodies.len().saturating_sub(ground);
         self.stats.fragments = fragments;

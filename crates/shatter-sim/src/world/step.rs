@@ -9,19 +9,20 @@ use glam::{Quat, Vec3};
 use rapier3d::prelude::*;
 
 use crate::bonds::clusters::{self, Loads};
+use crate::bonds::live::LiveObject;
 use crate::bonds::tags::{Kind, tag, untag};
 use crate::bonds::{joints, split};
 use crate::object::{BondModel, ExplosionSpec, ProjectileShape, ProjectileSpec};
-use crate::world::settings::SimEvent;
+use crate::world::settings::{BreakCause, SimEvent};
 use crate::world::state::{Action, ObjectId, Projectile, RunState, World};
 
 /// One contact-force report: the two colliders, the impulse on `collider2` and the force.
 #[derive(Debug, Clone, Copy)]
-struct ContactHit {
-    collider1: ColliderHandle,
-    collider2: ColliderHandle,
-    impulse: Vec3,
-    force: f32,
+pub(crate) struct ContactHit {
+    pub collider1: ColliderHandle,
+    pub collider2: ColliderHandle,
+    pub impulse: Vec3,
+    pub force: f32,
 }
 
 /// Collects Rapier's contact-force events during a step.
@@ -85,6 +86,8 @@ impl World {
         let hits = hits.0.into_inner().unwrap_or_default();
         self.break_joints();
         self.break_clusters(&hits);
+        self.break_by_stress(&hits);
+        self.report_breaks();
         self.expire();
         self.guard();
         self.cap_debris();
@@ -218,16 +221,34 @@ impl World {
                 continue;
             };
             let bodies = clusters::break_loaded(live, &loads);
-            for body in bodies {
-                let new = split::split(&mut self.physics, live, object, body, &loads.impulses);
-                for h in std::iter::once(body).chain(new) {
-                    let single = live.body.iter().filter(|b| **b == Some(h)).count() == 1;
-                    let dynamic = self.physics.bodies.get(h).is_some_and(|rb| rb.is_dynamic());
-                    if single && dynamic && !self.debris.contains(&(object, h)) {
-                        self.debris.push_back((object, h));
-                    }
+            split_bodies(
+                &mut self.physics,
+                &mut self.debris,
+                live,
+                object,
+                bodies,
+                &loads.impulses,
+            );
+        }
+    }
+
+    /// Pushes a [`SimEvent::BondsBroken`] per object and cause for the bonds broken since
+    /// the last report.
+    pub(crate) fn report_breaks(&mut self) {
+        for (id, record) in &self.objects {
+            let Some(live) = &record.live else { continue };
+            let seen = self.reported.entry(id.0).or_insert([0; 3]);
+            for cause in BreakCause::ALL {
+                let (now, before) = (live.broken_by[cause.index()], seen[cause.index()]);
+                if now > before {
+                    self.events.push(SimEvent::BondsBroken {
+                        object: id.0,
+                        cause,
+                        count: now - before,
+                    });
                 }
             }
+            *seen = live.broken_by;
         }
     }
 
@@ -293,6 +314,8 @@ impl World {
             }
         }
         self.apply_loads(loads);
+        self.queue_explosion_forces(&spec);
+        self.report_breaks();
         let ground = self.ground;
         let mut pushes = Vec::new();
         for (h, rb) in self.physics.bodies.iter() {
@@ -377,8 +400,7 @@ impl World {
                     {
                         for f in 0..live.body.len() {
                             if live.body[f] == Some(h) {
-                                live.body[f] = None;
-                                live.colliders[f].clear();
+                                live.drop_fragment(f);
                             }
                         }
                     }
@@ -416,13 +438,34 @@ impl World {
             {
                 for f in 0..live.body.len() {
                     if live.body[f] == Some(h) {
-                        live.body[f] = None;
-                        live.colliders[f].clear();
+                        live.drop_fragment(f);
                     }
                 }
             }
             self.physics.remove_body(h);
             self.stats.debris_removed += 1;
+        }
+    }
+}
+
+/// Splits each of `bodies` into its components and lists the new single-fragment dynamic
+/// bodies as debris.
+pub(crate) fn split_bodies(
+    physics: &mut PhysicsWorld,
+    debris: &mut std::collections::VecDeque<(u32, RigidBodyHandle)>,
+    live: &mut LiveObject,
+    object: u32,
+    bodies: Vec<RigidBodyHandle>,
+    impulses: &BTreeMap<u32, (Vec3, f32)>,
+) {
+    for body in bodies {
+        let new = split::split(physics, live, object, body, impulses);
+        for h in std::iter::once(body).chain(new) {
+            let single = live.body.iter().filter(|b| **b == Some(h)).count() == 1;
+            let dynamic = physics.bodies.get(h).is_some_and(|rb| rb.is_dynamic());
+            if single && dynamic && !debris.contains(&(object, h)) {
+                debris.push_back((object, h));
+            }
         }
     }
 }
