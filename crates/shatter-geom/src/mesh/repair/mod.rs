@@ -132,6 +132,14 @@ pub fn repair(
     if options.union && needs_union(&soup) {
         let before = soup.tris.len();
         soup = union::union(&soup).map_err(|e| RepairError::Union(e.0))?;
+        // The union's vertices are rounded to f64 once each, which can leave a few
+        // triangles touching; the union of that settles them (bounded rounds).
+        for _ in 0..3 {
+            if !needs_union(&soup) {
+                break;
+            }
+            soup = union::union(&soup).map_err(|e| RepairError::Union(e.0))?;
+        }
         let shells = kept.len();
         report.union = Some(UnionReport {
             shells,

@@ -70,6 +70,7 @@ pub(super) fn union(soup: &Soup) -> Result<Soup, UnionFailed> {
         },
         material: Vec::new(),
     };
+    let pinched = separate_pinches(&mut result.pos, &out.tri_verts);
     for (t, tri) in out.tri_verts.chunks_exact(3).enumerate() {
         let tri = [tri[0] as u32, tri[1] as u32, tri[2] as u32];
         if tri.iter().any(|&v| v as usize >= result.pos.len()) {
@@ -98,7 +99,51 @@ pub(super) fn union(soup: &Soup) -> Result<Soup, UnionFailed> {
         };
         result.push(tri, corners, material);
     }
+    let _ = pinched;
     Ok(result)
+}
+
+/// Where the union's surface touches itself at a point (two fans of one position, which
+/// Manifold keeps as separate vertices), moves each copy a millionth of the way towards
+/// the mean of its own neighbours, so the two fans no longer share a position (a solid's
+/// validation refuses a self-touching surface). Returns how many copies moved.
+fn separate_pinches(pos: &mut [DVec3], tri_verts: &[u64]) -> usize {
+    use std::collections::HashMap;
+    let mut by_position: HashMap<[u64; 3], Vec<usize>> = HashMap::new();
+    for (v, p) in pos.iter().enumerate() {
+        by_position
+            .entry(crate::mesh::position_key(*p))
+            .or_default()
+            .push(v);
+    }
+    let shared: Vec<Vec<usize>> = by_position.into_values().filter(|g| g.len() > 1).collect();
+    if shared.is_empty() {
+        return 0;
+    }
+    let mut sum = vec![DVec3::ZERO; pos.len()];
+    let mut count = vec![0u32; pos.len()];
+    for tri in tri_verts.chunks_exact(3) {
+        for k in 0..3 {
+            let (a, b) = (tri[k] as usize, tri[(k + 1) % 3] as usize);
+            if a < pos.len() && b < pos.len() {
+                sum[a] += pos[b];
+                count[a] += 1;
+                sum[b] += pos[a];
+                count[b] += 1;
+            }
+        }
+    }
+    let mut moved = 0;
+    for group in shared {
+        for v in group {
+            if count[v] > 0 {
+                let mean = sum[v] / f64::from(count[v]);
+                pos[v] += (mean - pos[v]) * 1e-6;
+                moved += 1;
+            }
+        }
+    }
+    moved
 }
 
 /// Triangle `s`'s attributes at `p` (projected onto its plane; barycentric weights).
