@@ -158,9 +158,10 @@ impl RepairReport {
         if self.open_sheets_dropped > 0 {
             let n = self.open_sheets_dropped;
             out.push(format!(
-                "dropped {n} open sheet{} ({} triangles) that enclose no volume",
+                "dropped {n} open sheet{} ({} triangle{}) enclosing no volume",
                 s(n),
-                self.open_sheet_triangles
+                self.open_sheet_triangles,
+                s(self.open_sheet_triangles)
             ));
         }
         if self.non_orientable_dropped > 0 {
