@@ -216,3 +216,45 @@ fn a_collinear_triangle_is_dropped_and_its_t_junction_split() {
     assert!(out.mesh.check().is_solid(), "{:?}", out.mesh.check());
     assert!((out.mesh.volume() - 1.0).abs() < 1e-12);
 }
+
+#[test]
+fn a_union_keeps_the_materials_and_interpolates_the_uvs_of_the_faces_it_lies_on() {
+    // Two crossing cubes, UV = (x, z) on every corner, material 0 and 1 by cube.
+    let a = shapes::cube();
+    let b = a.transformed(DVec3::ONE, DVec3::new(0.5, 0.3, 0.2));
+    let mesh = TriMesh::merge(&[a, b]);
+    let mut model = Model::from_mesh(mesh);
+    let planar = |p: DVec3| [p.x as f32, p.z as f32];
+    model.corners.uv = Some(
+        model
+            .mesh
+            .triangles
+            .iter()
+            .map(|t| t.map(|i| planar(model.mesh.positions[i as usize])))
+            .collect(),
+    );
+    model.materials.push(crate::model::Material::named("b"));
+    model.material = (0..24).map(|t| u32::from(t >= 12)).collect();
+    let (m, r) = repair(&model, &RepairOptions::default()).unwrap();
+    assert!(r.union.is_some());
+    m.check().unwrap();
+    let uvs = m.corners.uv.as_ref().unwrap();
+    let mut seen = [false; 2];
+    for (t, tri) in m.mesh.triangles.iter().enumerate() {
+        let c = (0..3)
+            .map(|k| m.mesh.positions[tri[k] as usize])
+            .sum::<DVec3>()
+            / 3.0;
+        // No faces of the two cubes are coplanar: a triangle on cube a's surface has
+        // a's material, every other one b's.
+        let on_a = (c.abs().max_element() - 0.5).abs() < 1e-9;
+        let material = m.material[t];
+        seen[material as usize] = true;
+        assert_eq!(material, u32::from(!on_a), "{c}");
+        for k in 0..3 {
+            let want = planar(m.mesh.positions[tri[k] as usize]);
+            assert!((uvs[t][k][0] - want[0]).abs() < 1e-5 && (uvs[t][k][1] - want[1]).abs() < 1e-5);
+        }
+    }
+    assert_eq!(seen, [true, true]);
+}
