@@ -7,7 +7,7 @@ use shatter_geom::model::Model;
 use shatter_geom::{TriMesh, shapes};
 
 fn damaged_sphere() -> TriMesh {
-    let sphere = shapes::sphere(250, 201);
+    let sphere = shapes::sphere(270, 201);
     let mut tris: Vec<[u32; 3]> = sphere
         .triangles
         .iter()

@@ -180,7 +180,7 @@ fn close_shell(
         let Some(mut patch) = fill::patch(soup, hole) else {
             return false;
         };
-        if !(patch.area <= options.max_hole_area * area) {
+        if patch.area.is_nan() || patch.area > options.max_hole_area * area {
             return false;
         }
         let shift = (base - soup.pos.len()) as u32;

@@ -107,20 +107,17 @@ fn a_missing_face_is_filled_with_the_attributes_and_material_around_it() {
         assert_eq!(uvs[t], uv[t + 2]);
         assert_eq!(m.material[t], 1);
     }
-    for t in 10..m.mesh.triangles.len() {
-        assert_eq!(m.material[t], 1);
-        for (k, &v) in m.mesh.triangles[t].iter().enumerate() {
+    let patch = m.mesh.triangles.iter().zip(uvs).zip(&m.material).skip(10);
+    for ((tri, uv), &material) in patch {
+        assert_eq!(material, 1);
+        for (k, &v) in tri.iter().enumerate() {
             let p = m.mesh.positions[v as usize];
             assert!(
                 (p.x - 0.5).abs() < 1e-12,
                 "the patch lies on the face's plane"
             );
             let want = [(p.x + 0.5) as f32, (p.y + 0.5) as f32];
-            assert!(
-                (uvs[t][k][1] - want[1]).abs() < 1e-6,
-                "{:?} {want:?}",
-                uvs[t][k]
-            );
+            assert!((uv[k][1] - want[1]).abs() < 1e-6, "{:?} {want:?}", uv[k]);
         }
     }
 }

@@ -32,6 +32,16 @@ pub(super) struct UnionFailed(pub String);
 /// The union of the soup's closed shells (all wound outward, cavities inward), as a new
 /// soup with the attributes carried over.
 pub(super) fn union(soup: &Soup) -> Result<Soup, UnionFailed> {
+    // A panic inside the crate on some input must not take the caller down: it becomes
+    // an error naming the step.
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| union_of(soup))).unwrap_or_else(|_| {
+        Err(UnionFailed(
+            "the union of the closed parts failed (an internal error of manifold-rust)".into(),
+        ))
+    })
+}
+
+fn union_of(soup: &Soup) -> Result<Soup, UnionFailed> {
     let mut mesh = MeshGL64 {
         num_prop: 3,
         ..MeshGL64::default()
