@@ -12,8 +12,9 @@
 //! exact predicates and rational constructions, arrangement, winding-number
 //! classification, one rounding to f64 per output vertex) and keeps, per output
 //! triangle, the input face it lies on, from which the attributes are interpolated
-//! again. It costs about 40 s of cold build on two cores (measured: see the report of
-//! the commit that added it) and is only run when the shells do cross or touch.
+//! again. Its cold debug build (with its dependencies: dashu, clipper2-rust, num-traits,
+//! rustc-hash) took 53 s of wall time (16 s of CPU) on the project's two-core machine
+//! while another build ran. The union only runs when the shells do cross or touch.
 //!
 //! Each output triangle lies on one input triangle (its face id); its corners take that
 //! triangle's material and its UVs, normals and colours interpolated barycentrically at
