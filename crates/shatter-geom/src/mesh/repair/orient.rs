@@ -137,7 +137,7 @@ const PROBES: usize = 8;
 
 /// For closed shells wound outward: which are cavities (inside an odd number of the
 /// others). A shell counts as inside another when its bounds are, and every one of a few
-/// of its vertices spread over it has a winding number of at least ½ with respect to
+/// of its triangles' centroids spread over it has a winding number of at least ½ with respect to
 /// the other (a shell that only crosses another is not inside it).
 pub(super) fn cavities(soup: &Soup, shells: &[Shell]) -> Vec<bool> {
     let boxes: Vec<(DVec3, DVec3)> = shells.iter().map(|s| bounds(soup, s)).collect();
@@ -155,7 +155,12 @@ pub(super) fn cavities(soup: &Soup, shells: &[Shell]) -> Vec<bool> {
                     .iter()
                     .step_by(step)
                     .take(PROBES)
-                    .map(|&t| soup.pos[soup.tris[t as usize][0] as usize])
+                    .map(|&t| {
+                        // Triangle centroids: a vertex may be shared with the other
+                        // shell, where its winding number says nothing.
+                        let [a, b, c] = soup.tris[t as usize].map(|v| soup.pos[v as usize]);
+                        (a + b + c) / 3.0
+                    })
                     .collect()
             };
             let depth = (0..shells.len())
