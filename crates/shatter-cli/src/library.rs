@@ -5,6 +5,7 @@ use std::path::Path;
 
 use shatter_geom::fracture::{Fracture, FractureParams, Method, Pattern, Placement};
 use shatter_geom::io::{self, ExportObject};
+use shatter_geom::mesh::repair::{RepairOptions, RepairReport};
 use shatter_geom::progress::Progress;
 use shatter_geom::sampling;
 use shatter_geom::{DVec3, TriMesh};
@@ -58,6 +59,17 @@ pub fn validate_solid(mesh: &mut TriMesh, origin: &str) -> Result<Option<String>
         ))),
         Err(e) => Err(CliError::input(format!("{origin}: {e}"))),
     }
+}
+
+/// Repairs a model read from `origin` into a closed solid (`mesh::repair` with its
+/// default options). A model with nothing solid in it is bad input (exit code 2),
+/// named by `origin` ("sheet.obj: 12 open sheets and no closed part").
+pub fn repair(
+    model: &shatter_geom::model::Model,
+    origin: &str,
+) -> Result<(shatter_geom::model::Model, RepairReport), CliError> {
+    shatter_geom::mesh::repair::repair(model, &RepairOptions::default())
+        .map_err(|e| CliError::input(format!("{origin}: {e}")))
 }
 
 /// Loads a model (mesh, attributes, materials) with the reader's warnings. Every

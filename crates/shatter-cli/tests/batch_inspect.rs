@@ -34,6 +34,7 @@ fn inspect_reports_shells_holes_materials_and_uvs() {
         text.contains("shells: 1 (0 closed, 1 open), 1 hole"),
         "{text}"
     );
+    assert!(text.contains("repair: filled 3 holes with"), "{text}");
     let v1 = corpus("gltf1/BoxTextured_v1.gltf");
     shatter(dir.path(), &["inspect", v1.to_str().unwrap()])
         .bad_input(&["glTF 1.0 is not supported"]);
@@ -44,7 +45,8 @@ fn a_batch_writes_one_output_per_input_and_goes_on_past_a_failure() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
     let good = corpus("gltf/BoxTextured.glb");
-    let open = corpus("stl/sphereWithHole.stl");
+    // Two flat triangles: nothing with a volume, so repair refuses it.
+    let open = corpus("stl/triangle_with_two_solids.stl");
     let args = [
         "fracture",
         good.to_str().unwrap(),
@@ -56,7 +58,7 @@ fn a_batch_writes_one_output_per_input_and_goes_on_past_a_failure() {
         "--json",
     ];
     let run = shatter(dir.path(), &args);
-    // One file is open: bad input, exit 2, and the other is written.
+    // One file is a flat sheet: bad input, exit 2, and the other is written.
     assert_eq!(run.code, 2, "{}", run.stderr);
     let summary = run.json();
     assert_eq!(
@@ -67,7 +69,7 @@ fn a_batch_writes_one_output_per_input_and_goes_on_past_a_failure() {
         summary["results"][1]["error"]
             .as_str()
             .unwrap()
-            .contains("boundary edges")
+            .contains("open sheets and no closed part")
     );
     assert!(out.join("BoxTextured.glb").is_file());
     let on_disk: serde_json::Value =
@@ -99,4 +101,66 @@ fn a_batch_writes_one_output_per_input_and_goes_on_past_a_failure() {
     assert!(out2.join("box_obj.obj").is_file() && out2.join("box_glb.obj").is_file());
     // Several files without --out-dir: refused before any work.
     shatter(dir.path(), &["fracture", input.to_str().unwrap()]).bad_input(&["--out-dir"]);
+}
+
+#[test]
+fn fracture_repairs_an_open_mesh_unless_strict() {
+    let dir = tempfile::tempdir().unwrap();
+    let sphere = corpus("stl/sphereWithHole.stl");
+    let run = shatter(
+        dir.path(),
+        &[
+            "fracture",
+            sphere.to_str().unwrap(),
+            "--pieces",
+            "6",
+            "--json",
+        ],
+    )
+    .ok();
+    let json = run.json();
+    assert!(json["fragments"].as_u64().unwrap() >= 2);
+    let warnings = json["warnings"].as_array().unwrap();
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w.as_str().unwrap().contains("filled 3 holes")),
+        "{warnings:?}"
+    );
+    let (v, f) = (
+        json["mesh_volume"].as_f64().unwrap(),
+        json["fragments_volume"].as_f64().unwrap(),
+    );
+    assert!((v - f).abs() <= 1e-6 * v, "{v} {f}");
+    // --strict: today's refusal.
+    shatter(
+        dir.path(),
+        &["fracture", sphere.to_str().unwrap(), "--strict"],
+    )
+    .bad_input(&["boundary edges"]);
+    // Nothing solid: refused, saying what was found.
+    let sheet = corpus("stl/triangle_with_two_solids.stl");
+    shatter(dir.path(), &["fracture", sheet.to_str().unwrap()])
+        .bad_input(&["open sheets and no closed part"]);
+    // Intersecting parts: fractured as their union.
+    let spider = corpus("stl/Spider_binary.stl");
+    let json = shatter(
+        dir.path(),
+        &[
+            "fracture",
+            spider.to_str().unwrap(),
+            "--pieces",
+            "5",
+            "--json",
+        ],
+    )
+    .ok()
+    .json();
+    let warnings = json["warnings"].as_array().unwrap();
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w.as_str().unwrap().contains("replaced by their union")),
+        "{warnings:?}"
+    );
 }

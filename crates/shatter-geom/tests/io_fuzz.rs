@@ -296,7 +296,16 @@ proptest! {
     #[test]
     fn mutated_stl_never_panics(which in 0usize..3, mutations in prop::collection::vec(mutation(), 1..4)) {
         let file = ["stl/triangle_with_two_solids.stl", "stl/gearwheel.bin.stl", "stl/sphereWithHole.stl"][which];
-        parse(&mutate(&corpus(file), &mutations), MeshFormat::Stl, "mutant.stl", &MemoryFiles::new());
+        let bytes = mutate(&corpus(file), &mutations);
+        parse(&bytes, MeshFormat::Stl, "mutant.stl", &MemoryFiles::new());
+        // What loads is repaired without a panic: a model that fits together, or an error.
+        if let Ok(loaded) = io::parse_model_with(&bytes, MeshFormat::Stl, "mutant.stl", &MemoryFiles::new()) {
+            use shatter_geom::mesh::repair::{repair, RepairOptions};
+            if let Ok((fixed, _)) = repair(&loaded.model, &RepairOptions::default()) {
+                fixed.check().unwrap();
+                assert!(!fixed.mesh.triangles.is_empty());
+            }
+        }
     }
 
     #[test]

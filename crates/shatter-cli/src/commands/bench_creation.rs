@@ -574,6 +574,7 @@ fn fracture_config(
             placement,
         },
         seed,
+        strict: true,
     }
 }
 

@@ -133,6 +133,7 @@ pub fn run(args: &BenchFractureArgs, ctx: &Context) -> Result<(), CliError> {
         scale: DVec3::ONE,
         method: case.method.clone(),
         seed: args.seed,
+        strict: true,
     };
     let mut total = Estimate::default();
     for case in cases() {

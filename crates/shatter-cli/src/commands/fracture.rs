@@ -53,8 +53,10 @@ pub enum PatternArg {
 #[derive(Debug, Args)]
 #[command(group(ArgGroup::new("source").required(true).args(["meshes", "shape"])))]
 pub struct FractureArgs {
-    /// Mesh file: .obj, .stl or .glb/.gltf (closed, consistently wound). Several files or
-    /// folders (their mesh files) fracture them all, in parallel, into --out-dir.
+    /// Mesh file: .obj, .stl or .glb/.gltf, repaired first (cracks welded, holes filled,
+    /// shells oriented, loose sheets dropped, crossing parts united; see --strict).
+    /// Several files or folders (their mesh files) fracture them all, in parallel, into
+    /// --out-dir.
     #[arg(value_name = "MESH")]
     pub meshes: Vec<PathBuf>,
     /// A built-in shape instead of a file.
@@ -105,6 +107,10 @@ pub struct FractureArgs {
     /// Batch: files fractured at once [default: the number of cores].
     #[arg(long, value_name = "N")]
     pub jobs: Option<usize>,
+    /// Refuse a mesh that is not already a closed, manifold solid instead of repairing
+    /// it (an inward-wound mesh is still flipped).
+    #[arg(long)]
+    pub strict: bool,
     /// Print one JSON object with counts, volumes and the time.
     #[arg(long)]
     pub json: bool,
@@ -192,6 +198,8 @@ pub struct FractureConfig {
     pub method: MethodConfig,
     /// Random seed.
     pub seed: u64,
+    /// Refuse a file that is not a valid solid instead of repairing it.
+    pub strict: bool,
 }
 
 impl FractureConfig {
@@ -336,6 +344,7 @@ impl FractureArgs {
                 scale,
                 method,
                 seed: self.seed,
+                strict: self.strict,
             },
             out,
         ))
@@ -473,14 +482,28 @@ pub fn check_fracture(
     Ok(estimate)
 }
 
-/// Loads (and scales) the mesh a configuration names and checks that it is a valid
-/// solid; returns it with any warnings (an inward mesh is flipped).
+/// Loads (and scales) the mesh a configuration names, repairs a file's model (unless
+/// `strict`) and checks that it is a valid solid; returns it with any warnings (the
+/// reader's, each repair's, an inward mesh flipped).
 pub fn load_source(config: &FractureConfig) -> Result<(TriMesh, Vec<String>), CliError> {
     let (mesh, origin, mut warnings): (TriMesh, String, Vec<String>) = match &config.source {
         MeshSource::File(path) => {
             let loaded = library::load_model(path)?;
-            let warnings = loaded.warnings.iter().map(|w| w.to_string()).collect();
-            (loaded.model.mesh, path.display().to_string(), warnings)
+            let origin = path.display().to_string();
+            let mut warnings: Vec<String> = loaded.warnings.iter().map(|w| w.to_string()).collect();
+            let model = if config.strict {
+                loaded.model
+            } else {
+                let (model, report) = library::repair(&loaded.model, &origin)?;
+                warnings.extend(
+                    report
+                        .warnings()
+                        .into_iter()
+                        .map(|w| format!("{origin}: {w}")),
+                );
+                model
+            };
+            (model.mesh, origin, warnings)
         }
         MeshSource::Shape(name) => (
             library::builtin_shape(*name)?,

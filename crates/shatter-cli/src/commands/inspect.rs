@@ -122,7 +122,7 @@ fn text(file: &str, r: &Inspection) -> String {
         line(format!("warning: {w}"));
     }
     if r.repair.is_empty() {
-        line("repair: not available yet (shatter_geom::mesh::repair, issue 13.3)".to_string());
+        line("repair: nothing to repair".to_string());
     } else {
         for step in &r.repair {
             line(format!("repair: {step}"));

@@ -469,6 +469,7 @@ fn case_config(case: &Case) -> FractureConfig {
         scale: DVec3::ONE,
         method,
         seed: case.seed,
+        strict: true,
     }
 }
 

@@ -1,9 +1,8 @@
 //! What a loaded model holds, without fracturing it: shells (closed or open), holes,
 //! volume, materials, attribute sets and the reader's warnings.
 //!
-//! This is what the loader and the mesh checks know. The repair of real-world input
-//! (`mesh::repair`, issue 13.3) will say what it would do to the model; its report is
-//! meant to go into [`Inspection::repair`], which is empty until then.
+//! This is what the loader and the mesh checks know, plus what the repair of real-world
+//! input ([`crate::mesh::repair`]) would do to the model, in [`Inspection::repair`].
 
 use serde::Serialize;
 
@@ -71,8 +70,11 @@ pub struct Inspection {
     pub colors: bool,
     /// The reader's warnings.
     pub warnings: Vec<String>,
-    /// What repair would do (empty until `mesh::repair` lands; see the module docs).
+    /// What repair would do: one line per repair with its counts (empty when the model
+    /// needs none), or why it would refuse the model ("2 open sheets and no closed part").
     pub repair: Vec<String>,
+    /// Whether repair would refuse the model.
+    pub repair_refused: bool,
 }
 
 /// Inspects a loaded model.
@@ -88,6 +90,8 @@ pub struct Inspection {
 /// assert!(report.shells[0].closed);
 /// assert_eq!((report.shells[1].closed, report.shells[1].holes), (false, 1));
 /// assert!(!report.solid);
+/// // Repair would drop the lone triangle.
+/// assert_eq!(report.repair, vec!["dropped 1 open sheet (1 triangle) enclosing no volume"]);
 /// ```
 pub fn inspect(loaded: &LoadedModel) -> Inspection {
     let model = &loaded.model;
@@ -140,6 +144,11 @@ pub fn inspect(loaded: &LoadedModel) -> Inspection {
                 .map(|t| format!("{} ({})", t.image.name, t.image.format.extension())),
         })
         .collect();
+    let (repair, repair_refused) =
+        match crate::mesh::repair::repair(model, &crate::mesh::repair::RepairOptions::default()) {
+            Ok((_, report)) => (report.warnings(), false),
+            Err(e) => (vec![format!("refused: {e}")], true),
+        };
     Inspection {
         triangles: mesh.triangles.len(),
         vertices: n,
@@ -154,7 +163,8 @@ pub fn inspect(loaded: &LoadedModel) -> Inspection {
         normals: model.corners.normal.is_some(),
         colors: model.corners.color.is_some(),
         warnings: loaded.warnings.iter().map(|w| w.to_string()).collect(),
-        repair: Vec::new(),
+        repair,
+        repair_refused,
     }
 }
 

@@ -54,3 +54,6 @@ pub use load::{
 pub use obj::{save_obj, save_obj_with_materials, write_mtl, write_obj, write_obj_with_materials};
 pub use stl::{StlFormat, save_stl, write_stl};
 pub use warning::{LoadWarning, WarningKind};
+
+/// Ear clipping on a polygon's best-fit plane, also used by `mesh::repair` for large holes.
+pub(crate) use polygon::Triangulator;

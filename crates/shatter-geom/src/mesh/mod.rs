@@ -4,6 +4,7 @@
 mod check;
 mod intersect;
 mod mass;
+pub mod repair;
 mod shells;
 mod trimesh;
 mod validate;
