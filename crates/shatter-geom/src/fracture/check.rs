@@ -22,7 +22,9 @@ pub enum InvalidFracture {
     #[error("no fragments")]
     Empty,
     /// A triangle index past the fragment's vertices, or a non-finite coordinate.
-    #[error("fragment {fragment}: triangle {triangle} has a vertex index out of range or a non-finite vertex")]
+    #[error(
+        "fragment {fragment}: triangle {triangle} has a vertex index out of range or a non-finite vertex"
+    )]
     Malformed {
         /// The fragment.
         fragment: usize,
@@ -198,7 +200,9 @@ impl Fracture {
                 return Err(bad("fragment index out of range"));
             }
             if k > 0 && (self.bonds[k - 1].a, self.bonds[k - 1].b) >= (b.a, b.b) {
-                return Err(bad("not after the previous bond in (a, b) order (unsorted or repeated)"));
+                return Err(bad(
+                    "not after the previous bond in (a, b) order (unsorted or repeated)",
+                ));
             }
             if !(b.area > 0.0 && b.area.is_finite()) {
                 return Err(bad("area not positive and finite"));

@@ -26,7 +26,7 @@ mod validate;
 
 pub use check::{InvalidFracture, VOLUME_TOLERANCE};
 pub use entry::fracture;
-pub use normalize::ANISOTROPY;
 pub use methods::tetra::{SLIVER_QUALITY, SLIVER_VOLUME_FRACTION};
+pub use normalize::ANISOTROPY;
 pub use params::{FractureError, FractureParams, Method, Pattern, Placement};
 pub use types::{Bond, Fracture, Fragment};

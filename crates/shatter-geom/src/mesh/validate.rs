@@ -4,8 +4,8 @@
 use thiserror::Error;
 
 use super::TriMesh;
-use crate::fracture::normalize::{Frame, ldexp};
 use super::shells::{self, ShellOrientation};
+use crate::fracture::normalize::{Frame, ldexp};
 
 /// Why a mesh is not a valid solid. Each variant carries the offending data.
 #[derive(Debug, Clone, PartialEq, Error)]
