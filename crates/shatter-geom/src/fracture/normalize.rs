@@ -109,7 +109,6 @@ impl Frame {
     }
 
     /// Whether each axis has its own scale.
-    #[cfg(test)]
     pub(crate) fn is_per_axis(&self) -> bool {
         self.per_axis
     }
@@ -191,14 +190,14 @@ impl Frame {
     }
 
     /// The diagonal metric under which local distances are the input's distances (up to
-    /// one common factor): all ones when isotropic. Weights below 2⁻¹²⁸ are raised to it:
-    /// their contribution is then far below rounding, and the seeds' Delaunay
-    /// neighbours stay computable.
+    /// one common factor): all ones when isotropic. Weights are at least
+    /// `f64::MIN_POSITIVE` (a bisector keeps a non-zero normal; what that adds is far
+    /// below rounding once mapped back, unless the axes differ over 1e300-fold).
     pub(crate) fn metric(&self) -> DVec3 {
         let kmax = self.kmax();
         DVec3::from_array(
             self.k
-                .map(|k| ldexp(1.0, 2 * (k - kmax)).max(ldexp(1.0, -128))),
+                .map(|k| ldexp(1.0, 2 * (k - kmax)).max(f64::MIN_POSITIVE)),
         )
     }
 
@@ -251,7 +250,12 @@ impl Frame {
         let diagonal = [out[0][0], out[1][1], out[2][2]];
         let finite = out.iter().flatten().all(|x| x.is_finite());
         let largest = diagonal.iter().fold(0.0f64, |a, &b| a.max(b));
-        if finite && largest >= f64::MIN_POSITIVE {
+        let local_largest = [m[0][0], m[1][1], m[2][2]]
+            .iter()
+            .fold(0.0f64, |a, &b| a.max(b));
+        // Only a range problem is refused here: a tensor already zero in the local frame
+        // (a degenerate solid) maps to zero.
+        if finite && (largest >= f64::MIN_POSITIVE || local_largest <= 0.0) {
             return Ok(DMat3::from_cols_array_2d(&out));
         }
         // The magnitude of the largest diagonal entry, for the message.
@@ -334,6 +338,53 @@ impl Frame {
             area,
             centroid: self.point_to_world(b.centroid),
             normal,
+        })
+    }
+}
+
+/// Above this ratio of the signed tetrahedra's absolute sum to their sum, a mesh's
+/// volume is refused as lost in rounding (its relative error could pass 1e-10).
+pub const CANCELLATION_LIMIT: f64 = 1e6;
+
+/// Refuses a mesh whose volume `f64` cannot compute: the signed tetrahedra (apex at the
+/// first vertex, as the mass properties use) cancel so much that rounding swamps the
+/// result — a part of the mesh vastly larger than the rest, e.g. one vertex moved 1e33
+/// away into a flat fin.
+pub(crate) fn check_cancellation(pos: &[DVec3], tris: &[[u32; 3]]) -> Result<(), FractureError> {
+    let Some(&o) = pos.first() else {
+        return Ok(());
+    };
+    let (mut sum, mut abs) = (0.0f64, 0.0f64);
+    for t in tris {
+        let [a, b, c] = t.map(|i| pos[i as usize] - o);
+        let d = a.dot(b.cross(c));
+        sum += d;
+        abs += d.abs();
+    }
+    if abs <= CANCELLATION_LIMIT * sum.abs() {
+        return Ok(());
+    }
+    let ratio = abs / sum.abs();
+    Err(FractureError::VolumeLost {
+        log10: if ratio.is_finite() {
+            ratio.log10().round() as i32
+        } else {
+            308
+        },
+    })
+}
+
+/// Relative tolerance of the check that a fracture's volumes add up.
+pub const VOLUME_SUM_TOLERANCE: f64 = 1e-6;
+
+/// Refuses a fracture (local frame) whose fragments' volumes do not add up to `volume`.
+pub(crate) fn check_volume_sum(f: &Fracture, volume: f64) -> Result<(), FractureError> {
+    let total = f.total_volume();
+    if (total - volume).abs() <= VOLUME_SUM_TOLERANCE * volume {
+        Ok(())
+    } else {
+        Err(FractureError::VolumeMismatch {
+            ratio: total / volume,
         })
     }
 }

@@ -134,6 +134,29 @@ pub enum FractureError {
         /// Its order of magnitude (base 10).
         log10: i32,
     },
+    /// The mesh's volume is lost in rounding: its signed parts cancel about `10^log10`-
+    /// fold, so no volume, mass or inertia computed in `f64` would be right (a part of
+    /// the mesh vastly larger than the rest, e.g. a vertex moved 1e33 away into a flat
+    /// fin).
+    #[error(
+        "the mesh's volume is lost in rounding: its signed parts cancel about 1e{log10}-fold \
+         (is one part of the mesh vastly larger than the rest, e.g. a stray vertex?)"
+    )]
+    VolumeLost {
+        /// Order of magnitude (base 10) of the cancellation.
+        log10: i32,
+    },
+    /// The fragments' volumes do not add up to the mesh's (relative error above 1e-6):
+    /// the mesh has features far below the cut tolerance (1e-10 of its size per axis),
+    /// so the cut could not follow them.
+    #[error(
+        "the fragments' volumes add up to {ratio:.6} times the mesh's: the mesh has \
+         features far below the cut tolerance (1e-10 of its extent along an axis)"
+    )]
+    VolumeMismatch {
+        /// Sum of the fragments' volumes over the mesh's.
+        ratio: f64,
+    },
     /// An explicit seed, plane point or impact point so far from the mesh that the
     /// fracture's local frame (the mesh's box scaled to unit size) cannot hold it.
     #[error("{what} {index} is too far from the mesh to be represented in its frame")]
