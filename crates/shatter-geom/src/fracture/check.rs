@@ -177,7 +177,8 @@ impl Fracture {
         }
         if let Some(expected) = mesh_volume {
             let total = self.total_volume();
-            if !((total - expected).abs() <= VOLUME_TOLERANCE * expected.abs()) {
+            let err = (total - expected).abs();
+            if err.is_nan() || err > VOLUME_TOLERANCE * expected.abs() {
                 return Err(InvalidFracture::TotalVolume { total, expected });
             }
         }
@@ -207,7 +208,8 @@ impl Fracture {
             if !(b.area > 0.0 && b.area.is_finite()) {
                 return Err(bad("area not positive and finite"));
             }
-            if !((b.normal.length() - 1.0).abs() <= 1e-9) {
+            let off = (b.normal.length() - 1.0).abs();
+            if off.is_nan() || off > 1e-9 {
                 return Err(bad("normal is not a unit vector"));
             }
             if !b.centroid.is_finite() {
