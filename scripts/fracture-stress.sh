@@ -3,8 +3,11 @@
 # built-in shape, Voronoi with every pattern at 7, 60 and 250 cells and slicing with 3,
 # 8 and 20 planes, 8 seeds each (720 runs, a few minutes). A run fails when the command
 # fails or warns, when the fragments' volumes do not add up to the mesh's (relative
-# error above 1e-6), or when a fragment is below the sliver threshold (1e-4 of the
-# volume). Prints each failure and a summary; exits 1 if any run failed.
+# error above 1e-6), when a fragment is below the sliver threshold (1e-4 of the
+# volume), or when `--validate` (shatter_geom's Fracture::validate: every fragment a
+# closed 2-manifold, volumes adding up within 1e-9, a well-formed bond graph) fails.
+# Prints each failure and a summary with the count of non-manifold (invalid) results;
+# exits 1 if any run failed.
 #   bash scripts/fracture-stress.sh [SEEDS=8]
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -16,11 +19,15 @@ err=$(mktemp)
 trap 'rm -f "$err"' EXIT
 runs=0
 bad=0
+invalid=0
 check() {
     runs=$((runs + 1))
     local out
-    if ! out=$("$bin" fracture "$@" --json 2>"$err") || [[ -s $err ]]; then
+    if ! out=$("$bin" fracture "$@" --json --validate 2>"$err") || [[ -s $err ]]; then
         bad=$((bad + 1))
+        if grep -q "failed validation" "$err"; then
+            invalid=$((invalid + 1))
+        fi
         echo "FAIL $*: $(head -c 300 "$err")"
         return
     fi
@@ -49,5 +56,5 @@ for shape in cube capsule cylinder sphere torus bird; do
         done
     done
 done
-echo "fracture stress: $runs runs, $bad failed"
+echo "fracture stress: $runs runs, $bad failed ($invalid of them not closed 2-manifolds or otherwise invalid by Fracture::validate)"
 ((bad == 0))

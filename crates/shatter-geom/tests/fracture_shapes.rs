@@ -74,6 +74,77 @@ pub fn l_block() -> TriMesh {
 /// Volume of the L-block.
 pub const L_VOLUME: f64 = 3.0;
 
+/// A prism over a plane region from `z0` to `z1`: `points` (the boundary loop, counter-
+/// clockwise, is `points[..boundary]`; any further points are inside) and the region's
+/// counter-clockwise triangles `caps` over them.
+pub fn prism(
+    points: &[(f64, f64)],
+    boundary: usize,
+    caps: &[[u32; 3]],
+    z0: f64,
+    z1: f64,
+) -> TriMesh {
+    let n = points.len() as u32;
+    let mut pos: Vec<DVec3> = points.iter().map(|&(x, y)| DVec3::new(x, y, z0)).collect();
+    pos.extend(points.iter().map(|&(x, y)| DVec3::new(x, y, z1)));
+    let mut tris = Vec::new();
+    for &[a, b, c] in caps {
+        tris.push([a, c, b]); // bottom, facing -z
+        tris.push([a + n, b + n, c + n]); // top
+    }
+    for i in 0..boundary as u32 {
+        let j = (i + 1) % boundary as u32;
+        tris.push([i, j, j + n]);
+        tris.push([i, j + n, i + n]);
+    }
+    TriMesh::new(pos, tris)
+}
+
+/// The U block: a 3 × 3 square without the notch 1 < x < 2, y > 1; 1 thick.
+pub fn u_block() -> TriMesh {
+    let u = [
+        (0.0, 0.0),
+        (3.0, 0.0),
+        (3.0, 3.0),
+        (2.0, 3.0),
+        (2.0, 1.0),
+        (1.0, 1.0),
+        (1.0, 3.0),
+        (0.0, 3.0),
+    ];
+    let caps = [
+        [1, 2, 3],
+        [1, 3, 4],
+        [0, 1, 4],
+        [0, 4, 5],
+        [0, 5, 6],
+        [0, 6, 7],
+    ];
+    prism(&u, 8, &caps, 0.0, 1.0)
+}
+
+/// Volume of the U block.
+pub const U_VOLUME: f64 = 7.0;
+
+/// A five-pointed star (tips at radius 1, inner corners at 0.4), 0.5 thick.
+pub fn star() -> TriMesh {
+    let mut pts: Vec<(f64, f64)> = (0..10)
+        .map(|i| {
+            let a = std::f64::consts::FRAC_PI_2 + i as f64 * std::f64::consts::PI / 5.0;
+            let r = if i % 2 == 0 { 1.0 } else { 0.4 };
+            (r * a.cos(), r * a.sin())
+        })
+        .collect();
+    pts.push((0.0, 0.0));
+    let caps: Vec<[u32; 3]> = (0..10).map(|i| [10, i, (i + 1) % 10]).collect();
+    prism(&pts, 10, &caps, 0.0, 0.5)
+}
+
+/// Volume of the star: ten triangles of sides 1 and 0.4 at 36°, 0.5 thick.
+pub fn star_volume() -> f64 {
+    10.0 * 0.5 * 0.4 * (std::f64::consts::PI / 5.0).sin() * 0.5
+}
+
 /// A torus around the z axis (radii `big`, `small`), `nu × nv` quads.
 pub fn torus(big: f64, small: f64, nu: usize, nv: usize) -> TriMesh {
     let mut pos = Vec::new();

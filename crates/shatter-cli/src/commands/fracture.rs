@@ -118,6 +118,11 @@ pub struct FractureArgs {
     /// normal from a to b).
     #[arg(long, requires = "json")]
     pub json_bonds: bool,
+    /// Check the result with `Fracture::validate` (closed 2-manifold fragments, volumes
+    /// adding up to the mesh's within 1e-9, a well-formed bond graph); a failed check is
+    /// an internal error (exit code 1) naming the fragment and edge.
+    #[arg(long)]
+    pub validate: bool,
 }
 
 /// Output format of a batch.
@@ -257,6 +262,11 @@ impl FractureArgs {
         if !self.is_batch() && (self.out_format.is_some() || self.jobs.is_some()) {
             return Err(CliError::input(
                 "--out-format and --jobs apply to a batch (several MESH files, a folder, or --out-dir)",
+            ));
+        }
+        if self.is_batch() && self.validate {
+            return Err(CliError::input(
+                "--validate applies to one MESH or --shape, not to a batch",
             ));
         }
         let scale = validate_scale(self.scale)?;
@@ -544,6 +554,11 @@ pub fn run(args: &FractureArgs, ctx: &Context) -> Result<(), CliError> {
     let (fracture, more_warnings, millis) = fracture_timed(&mesh, &config)?;
     drop(bar);
     ctx.progress.check()?;
+    if args.validate {
+        fracture
+            .validate(Some(mesh.volume()))
+            .map_err(|e| CliError::internal(format!("the fracture failed validation: {e}")))?;
+    }
     warnings.extend(more_warnings);
     for w in &warnings {
         eprintln!("warning: {w}");

@@ -51,12 +51,24 @@ pub fn run(args: &ShapeArgs, ctx: &Context) -> Result<(), CliError> {
     let mesh = library::scaled(library::builtin_shape(config.name)?, config.scale);
     library::write_mesh(&config.out, config.format, &mesh, &ctx.progress)?;
     println!(
-        "wrote {} ({} vertices, {} triangles, volume {:.6}) to {}",
+        "wrote {} ({} vertices, {} triangles, volume {}) to {}",
         config.name,
         mesh.positions.len(),
         mesh.triangles.len(),
-        mesh.signed_volume(),
+        volume_text(&mesh),
         config.out.display()
     );
     Ok(())
+}
+
+/// The mesh's volume as text: `{:.6}` when `f64` holds it at full precision, otherwise
+/// its order of magnitude ("about 1e900, beyond the range of f64").
+fn volume_text(mesh: &shatter_geom::TriMesh) -> String {
+    let v = mesh.signed_volume();
+    if v.is_finite() && (v == 0.0 || v.abs() >= f64::MIN_POSITIVE) {
+        return format!("{v:.6}");
+    }
+    let (m, e) = mesh.signed_volume_exp2();
+    let log10 = m.abs().log10() + f64::from(e) * std::f64::consts::LOG10_2;
+    format!("about 1e{:.0}, beyond the range of f64", log10)
 }

@@ -14,15 +14,19 @@
 //! public function).
 
 mod bonds;
+mod check;
 mod entry;
 mod kernel;
 mod methods;
+pub(crate) mod normalize;
 mod params;
 mod seeds;
 mod types;
 mod validate;
 
+pub use check::{InvalidFracture, VOLUME_TOLERANCE};
 pub use entry::fracture;
 pub use methods::tetra::{SLIVER_QUALITY, SLIVER_VOLUME_FRACTION};
+pub use normalize::ANISOTROPY;
 pub use params::{FractureError, FractureParams, Method, Pattern, Placement};
 pub use types::{Bond, Fracture, Fragment};

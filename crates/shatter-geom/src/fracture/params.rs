@@ -121,4 +121,49 @@ pub enum FractureError {
     /// No fragment was produced (e.g. every seed was far outside the mesh).
     #[error("no fragment was produced")]
     NoFragments,
+    /// A result the mesh's size puts beyond `f64`: a volume (size³), inertia tensor
+    /// (size⁵) or bond area (size²) that would overflow to infinity or fall below the
+    /// smallest full-precision value (`f64::MIN_POSITIVE`, about 2.2e-308).
+    #[error(
+        "{what} would be about 1e{log10}, outside the range f64 holds at full precision \
+         (2.2e-308 to 1.8e308); rescale the mesh nearer to unit size"
+    )]
+    OutOfRange {
+        /// The quantity ("the mesh's volume", "a fragment's inertia tensor", ...).
+        what: &'static str,
+        /// Its order of magnitude (base 10).
+        log10: i32,
+    },
+    /// The mesh's volume is lost in rounding: its signed parts cancel about `10^log10`-
+    /// fold, so no volume, mass or inertia computed in `f64` would be right (a part of
+    /// the mesh vastly larger than the rest, e.g. a vertex moved 1e33 away into a flat
+    /// fin).
+    #[error(
+        "the mesh's volume is lost in rounding: its signed parts cancel about 1e{log10}-fold \
+         (is one part of the mesh vastly larger than the rest, e.g. a stray vertex?)"
+    )]
+    VolumeLost {
+        /// Order of magnitude (base 10) of the cancellation.
+        log10: i32,
+    },
+    /// The fragments' volumes do not add up to the mesh's (relative error above 1e-6):
+    /// the mesh has features far below the cut tolerance (1e-10 of its size per axis),
+    /// so the cut could not follow them.
+    #[error(
+        "the fragments' volumes add up to {ratio:.6} times the mesh's: the mesh has \
+         features far below the cut tolerance (1e-10 of its extent along an axis)"
+    )]
+    VolumeMismatch {
+        /// Sum of the fragments' volumes over the mesh's.
+        ratio: f64,
+    },
+    /// An explicit seed, plane point or impact point so far from the mesh that the
+    /// fracture's local frame (the mesh's box scaled to unit size) cannot hold it.
+    #[error("{what} {index} is too far from the mesh to be represented in its frame")]
+    TooFar {
+        /// What it is ("seed", "plane", "impact point").
+        what: &'static str,
+        /// Its index in the given list.
+        index: usize,
+    },
 }

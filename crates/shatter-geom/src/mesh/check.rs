@@ -82,7 +82,7 @@ struct EdgeUse {
 
 /// Whether the triangle `a b c` has zero area, decided exactly: it does when its
 /// projections onto the three coordinate planes all have zero signed area.
-pub(super) fn is_degenerate(a: glam::DVec3, b: glam::DVec3, c: glam::DVec3) -> bool {
+pub(crate) fn is_degenerate(a: glam::DVec3, b: glam::DVec3, c: glam::DVec3) -> bool {
     use robust::{Coord, orient2d};
     let proj = |p: glam::DVec3, i: usize, j: usize| Coord { x: p[i], y: p[j] };
     [(0, 1), (1, 2), (2, 0)]

@@ -9,6 +9,7 @@ mod shells;
 mod trimesh;
 mod validate;
 mod weld;
+pub(crate) use check::is_degenerate;
 pub(crate) use mass::mass_properties;
 pub(crate) use weld::position_key;
 pub(crate) use winding::winding_number;

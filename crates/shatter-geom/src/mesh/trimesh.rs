@@ -2,6 +2,8 @@
 
 use glam::DVec3;
 
+use crate::fracture::normalize::{Frame, ldexp};
+
 /// An indexed triangle mesh.
 ///
 /// Convention: triangles are wound counter-clockwise when seen from outside, so the
@@ -50,8 +52,40 @@ impl TriMesh {
         ]
     }
 
-    /// Signed volume enclosed by the mesh (positive for a closed outward mesh).
+    /// Signed volume enclosed by the mesh (positive for a closed outward mesh). At any
+    /// magnitude: a mesh far from unit size is measured in an exactly rescaled frame, so
+    /// the result is infinite or zero only when the volume itself is beyond `f64` (see
+    /// [`signed_volume_exp2`](TriMesh::signed_volume_exp2) for those).
     pub fn signed_volume(&self) -> f64 {
+        let (m, e) = self.signed_volume_exp2();
+        ldexp(m, e)
+    }
+
+    /// The signed volume as `m · 2^e`, so that a volume beyond `f64` (a cube of side
+    /// 1e300 has volume 1e900) is still known. Non-finite coordinates give `(NaN or the
+    /// plain sum, 0)`.
+    ///
+    /// ```
+    /// use shatter_geom::{DVec3, shapes};
+    /// let huge = shapes::cube().transformed(DVec3::splat(1e300), DVec3::ZERO);
+    /// let (m, e) = huge.signed_volume_exp2();
+    /// let log10 = m.log10() + e as f64 * std::f64::consts::LOG10_2;
+    /// assert!((log10 - 900.0).abs() < 1e-9);
+    /// assert_eq!(huge.signed_volume(), f64::INFINITY);
+    /// ```
+    pub fn signed_volume_exp2(&self) -> (f64, i32) {
+        if !self.positions.is_empty() && self.positions.iter().all(|p| p.is_finite()) {
+            let frame = Frame::of(self);
+            if !frame.is_plain() {
+                let local = frame.mesh_to_local(self);
+                return (local.signed_volume_here(), frame.volume_exp2());
+            }
+        }
+        (self.signed_volume_here(), 0)
+    }
+
+    /// [`signed_volume`](TriMesh::signed_volume) computed on the coordinates as they are.
+    fn signed_volume_here(&self) -> f64 {
         // Sum of signed tetrahedra (origin shifted to the first vertex for precision).
         let Some(&o) = self.positions.first() else {
             return 0.0;

@@ -5,6 +5,7 @@ use thiserror::Error;
 
 use super::TriMesh;
 use super::shells::{self, ShellOrientation};
+use crate::fracture::normalize::{Frame, ldexp};
 
 /// Why a mesh is not a valid solid. Each variant carries the offending data.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -87,8 +88,28 @@ impl TriMesh {
     /// assert_eq!(err, MeshError::BoundaryEdges(3));
     /// assert_eq!(err.to_string(), "3 boundary edges");
     /// ```
+    ///
+    /// Any magnitude: a mesh far from unit size, or very much thinner along one axis than
+    /// another, is checked in an exactly rescaled frame (powers of two per axis, which
+    /// keep the sign of every exact predicate), so the answer is the same as at unit
+    /// size.
     pub fn validate_solid(&self) -> Result<(), MeshError> {
         self.validate_indices()?;
+        let frame = Frame::of(self);
+        if frame.is_plain() {
+            return self.validate_solid_here();
+        }
+        match frame.mesh_to_local(self).validate_solid_here() {
+            Err(MeshError::Inward { volume }) => Err(MeshError::Inward {
+                volume: ldexp(volume, frame.volume_exp2()),
+            }),
+            r => r,
+        }
+    }
+
+    /// [`validate_solid`](TriMesh::validate_solid) on the coordinates as they are
+    /// (indices already checked).
+    fn validate_solid_here(&self) -> Result<(), MeshError> {
         // The topology and the self-intersection search are independent, so they run at
         // once (rayon); a topology error still comes first.
         let (r, crossing) = rayon::join(|| self.check(), || self.self_intersections(usize::MAX));

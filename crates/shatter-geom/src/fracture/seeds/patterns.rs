@@ -7,7 +7,6 @@ use rand_chacha::ChaCha8Rng;
 use super::inside::InsideSampler;
 use crate::fracture::Pattern;
 use crate::fracture::kernel::Piece;
-use crate::util::bounds;
 
 /// A standard normal deviate (Box–Muller).
 pub(crate) fn gaussian(rng: &mut ChaCha8Rng) -> f64 {
@@ -86,11 +85,10 @@ pub(crate) fn seeds(
     }
 }
 
-/// The metric weights of [`Pattern::Splinter`]: distances along the longest axis of the
-/// bounds count a quarter, so cells are four times longer along it.
-pub(crate) fn splinter_metric(piece: &Piece) -> DVec3 {
-    let (lo, hi) = bounds(&piece.pos);
-    let e = hi - lo;
+/// The metric weights of [`Pattern::Splinter`] for a solid of box extents `e` (in the
+/// input's frame): distances along the longest axis count a quarter, so cells are four
+/// times longer along it.
+pub(crate) fn splinter_weights(e: DVec3) -> DVec3 {
     let axis = if e.x >= e.y && e.x >= e.z {
         DVec3::X
     } else if e.y >= e.z {
