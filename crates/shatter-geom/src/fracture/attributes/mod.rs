@@ -175,7 +175,8 @@ impl Context<'_> {
             };
             match source {
                 Some((s, clamp)) => {
-                    let st = self.src.mesh.triangles[s].map(|i| self.src.mesh.positions[i as usize]);
+                    let st =
+                        self.src.mesh.triangles[s].map(|i| self.src.mesh.positions[i as usize]);
                     let w = p.map(|q| barycentric(st, q, clamp));
                     material.push(self.src.material.map_or(0, |m| m[s]));
                     if let (Some(out), Some(v)) = (&mut uv, &have.uv) {
@@ -230,12 +231,6 @@ impl Context<'_> {
 pub(crate) fn tags_of_flags(f: &Fragment) -> Vec<u64> {
     f.interior
         .iter()
-        .map(|&i| {
-            if i {
-                OWN_PLANE
-            } else {
-                super::kernel::SURFACE
-            }
-        })
+        .map(|&i| if i { OWN_PLANE } else { super::kernel::SURFACE })
         .collect()
 }

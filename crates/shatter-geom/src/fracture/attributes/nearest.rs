@@ -107,8 +107,7 @@ impl NearestTriangle {
                             continue;
                         }
                         for &t in &self.cells[self.index([x, y, z])] {
-                            let d2 =
-                                (closest_point(self.tris[t as usize], p) - p).length_squared();
+                            let d2 = (closest_point(self.tris[t as usize], p) - p).length_squared();
                             if best.is_none_or(|(b, bt)| d2 < b || (d2 == b && t < bt)) {
                                 best = Some((d2, t));
                             }
