@@ -135,7 +135,12 @@ fn one(
         let (fracture, more, millis) = fracture_timed(&model, &config)?;
         warnings.extend(more);
         library::write_fracture(output, format, &fracture, &ctx.progress)?;
-        Ok(FractureReport::new(&model.mesh, &fracture, millis, warnings))
+        Ok(FractureReport::new(
+            &model.mesh,
+            &fracture,
+            millis,
+            warnings,
+        ))
     };
     let result =
         std::panic::catch_unwind(std::panic::AssertUnwindSafe(work)).unwrap_or_else(|_| {

@@ -177,7 +177,16 @@ impl Context<'_> {
                 Some((s, clamp)) => {
                     let st =
                         self.src.mesh.triangles[s].map(|i| self.src.mesh.positions[i as usize]);
-                    let w = p.map(|q| barycentric(st, q, clamp));
+                    // A face of no known source may lie off the surface (tetrahedra of a
+                    // concave mesh): it is moved so that its centroid is at the nearest
+                    // point of the source triangle, whose value it then takes on average.
+                    let shift = if clamp {
+                        DVec3::ZERO
+                    } else {
+                        let c = (p[0] + p[1] + p[2]) / 3.0;
+                        nearest::closest_point(st, c) - c
+                    };
+                    let w = p.map(|q| barycentric(st, q + shift, clamp));
                     material.push(self.src.material.map_or(0, |m| m[s]));
                     if let (Some(out), Some(v)) = (&mut uv, &have.uv) {
                         out.push(w.map(|w| to_f32(mix(&v[s], w))));

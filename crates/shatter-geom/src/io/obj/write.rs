@@ -302,7 +302,10 @@ pub struct TextureFile {
 /// io::write_mtl_with_materials(&mut mtl, &[Material::named("wood")], &names).unwrap();
 /// assert!(String::from_utf8(mtl).unwrap().contains("map_Kd crate_wood.png"));
 /// ```
-pub fn texture_files(stem: &str, materials: &[Material]) -> (Vec<Option<String>>, Vec<TextureFile>) {
+pub fn texture_files(
+    stem: &str,
+    materials: &[Material],
+) -> (Vec<Option<String>>, Vec<TextureFile>) {
     texture_files_of(&clean(stem), &ExportMaterials::new(Some(materials)).list)
 }
 
