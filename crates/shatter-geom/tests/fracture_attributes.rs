@@ -1,7 +1,7 @@
 //! Attributes through fracture (`fracture_model`): UVs, normals and colours interpolated
 //! exactly at cuts, every fragment of a textured model with UVs and materials, interior
 //! UVs continuous across bonds, seams kept, every method.
-#![allow(clippy::unwrap_used)]
+#![allow(clippy::unwrap_used, clippy::needless_range_loop)]
 
 use std::path::Path;
 
