@@ -73,12 +73,21 @@ pub(crate) fn attach(fracture: &mut Fracture, tags: &[Vec<u64>], src: &Source<'_
     let interior = materials.len() as u32;
     materials.push(interior_material());
     let bases = cap_bases(&fracture.fragments, tags);
-    let unknown = tags
-        .iter()
-        .flatten()
-        .any(|&t| is_surface(t) && source_triangle(t).is_none());
+    // Surface triangles of no known source look up the nearest input triangle, unless
+    // there is nothing to look up: no corner attributes and one material.
+    let c = src.corners;
+    let plain = c.uv.is_none()
+        && c.normal.is_none()
+        && c.color.is_none()
+        && src.material.is_none_or(|m| m.iter().all(|&x| x == m[0]));
+    let unknown = !plain
+        && tags
+            .iter()
+            .flatten()
+            .any(|&t| is_surface(t) && source_triangle(t).is_none());
     let ctx = Context {
         src,
+        surface: src.material.and_then(|m| m.first()).copied().unwrap_or(0),
         interior,
         frame: UvFrame::of(&src.mesh.positions),
         bases,
@@ -100,6 +109,9 @@ pub(crate) fn attach(fracture: &mut Fracture, tags: &[Vec<u64>], src: &Source<'_
 /// Everything the per-fragment pass reads.
 struct Context<'a> {
     src: &'a Source<'a>,
+    /// The material of a surface triangle whose source is not looked up (the input's
+    /// first triangle's: all of them have it then).
+    surface: u32,
     interior: u32,
     frame: UvFrame,
     bases: crate::util::FastMap<u64, Basis>,
@@ -204,7 +216,11 @@ impl Context<'_> {
                 }
                 None => {
                     // A cap (or a surface triangle of an input without triangles).
-                    material.push(if is_surface(tag) { 0 } else { self.interior });
+                    material.push(if is_surface(tag) {
+                        self.surface
+                    } else {
+                        self.interior
+                    });
                     let basis = if is_surface(tag) || tag == OWN_PLANE {
                         Basis::of_triangle(p)
                     } else {
