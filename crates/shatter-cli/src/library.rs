@@ -6,6 +6,7 @@ use std::path::Path;
 use shatter_geom::fracture::{Fracture, FractureParams, Method, Pattern, Placement};
 use shatter_geom::io::{self, ExportObject};
 use shatter_geom::mesh::repair::{RepairOptions, RepairReport};
+use shatter_geom::model::{Material, Model};
 use shatter_geom::progress::Progress;
 use shatter_geom::sampling;
 use shatter_geom::{DVec3, TriMesh};
@@ -46,6 +47,44 @@ pub fn scaled(mesh: TriMesh, scale: DVec3) -> TriMesh {
     } else {
         mesh.transformed(scale, DVec3::ZERO)
     }
+}
+
+/// `model` with its positions multiplied component-wise by `scale` (positive) and its
+/// normals by the inverse scale (renormalised); UVs and colours unchanged.
+pub fn scaled_model(mut model: Model, scale: DVec3) -> Model {
+    if scale == DVec3::ONE {
+        return model;
+    }
+    model.mesh = model.mesh.transformed(scale, DVec3::ZERO);
+    if let Some(normals) = &mut model.corners.normal {
+        for n in normals.iter_mut().flatten() {
+            let m = (DVec3::new(n[0].into(), n[1].into(), n[2].into()) / scale).normalize_or_zero();
+            *n = m.as_vec3().to_array();
+        }
+    }
+    model
+}
+
+/// [`validate_solid`] of a model's mesh; when its triangles are flipped, their corner
+/// attributes follow (corners 1 and 2 swap; the normals keep their direction, which an
+/// inward winding does not tell wrong).
+pub fn validate_model(model: &mut Model, origin: &str) -> Result<Option<String>, CliError> {
+    let flipped = validate_solid(&mut model.mesh, origin)?;
+    if flipped.is_some() {
+        let c = &mut model.corners;
+        for t in 0..model.mesh.triangles.len() {
+            if let Some(v) = &mut c.uv {
+                v[t].swap(1, 2);
+            }
+            if let Some(v) = &mut c.normal {
+                v[t].swap(1, 2);
+            }
+            if let Some(v) = &mut c.color {
+                v[t].swap(1, 2);
+            }
+        }
+    }
+    Ok(flipped)
 }
 
 /// Checks that `mesh` (read from `origin`, a file name or a shape name) is a valid solid.
@@ -95,8 +134,10 @@ pub fn write_mesh(
     save(path, format, &[ExportObject::new(&name, mesh)], progress)
 }
 
-/// Writes a fracture: one object (OBJ `o fragment_i`) or node (GLB) per fragment, cut
-/// faces under the `interior` material, the original surface under `surface`.
+/// Writes a fracture: one object (OBJ `o fragment_i`) or node (GLB) per fragment with
+/// its corner attributes (UVs, normals, colours), each triangle under its material of
+/// [`Fracture::materials`] (the input's, then `interior` for the cut faces). A GLB embeds
+/// the textures; an OBJ's MTL file references them, copied next to it.
 pub fn write_fracture(
     path: &Path,
     format: MeshFormat,
@@ -110,9 +151,18 @@ pub fn write_fracture(
         .fragments
         .iter()
         .zip(&names)
-        .map(|(f, name)| ExportObject::new(name, &f.mesh).with_interior(&f.interior))
+        .map(|(f, name)| {
+            let o = ExportObject::new(name, &f.mesh)
+                .with_interior(&f.interior)
+                .with_corners(&f.corners);
+            if f.material.len() == f.mesh.triangles.len() {
+                o.with_materials(&f.material)
+            } else {
+                o
+            }
+        })
         .collect();
-    save(path, format, &objects, progress)
+    save_with(path, format, &objects, Some(&fracture.materials), progress)
 }
 
 /// Writes the objects through temporary files renamed into place (an interrupted or
@@ -124,6 +174,19 @@ fn save(
     objects: &[ExportObject<'_>],
     progress: &Progress,
 ) -> Result<(), CliError> {
+    save_with(path, format, objects, None, progress)
+}
+
+/// [`save`] with a material list (`None` or empty: `surface` / `interior`); an OBJ's
+/// textures are written next to it, each through a temporary file.
+fn save_with(
+    path: &Path,
+    format: MeshFormat,
+    objects: &[ExportObject<'_>],
+    materials: Option<&[Material]>,
+    progress: &Progress,
+) -> Result<(), CliError> {
+    let materials = materials.filter(|m| !m.is_empty());
     let mapped = |e: io::MeshIoError| match e {
         // Failing to create or write the file: the user's path (checked up front, so
         // this is rare: a full disk, a race).
@@ -147,17 +210,43 @@ fn save(
                 .unwrap_or_else(|| "materials.mtl".into());
             // The material file first: the OBJ, the output that matters, is renamed
             // into place last.
-            output::write_file(&mtl_path, progress, |w| io::write_mtl(w))?;
+            match materials {
+                Some(list) => {
+                    let stem = path
+                        .file_stem()
+                        .map(|s| s.to_string_lossy().into_owned())
+                        .unwrap_or_else(|| "model".into());
+                    let (names, files) = io::texture_files(&stem, list);
+                    let dir = match path.parent() {
+                        Some(d) if !d.as_os_str().is_empty() => d,
+                        _ => Path::new("."),
+                    };
+                    for f in &files {
+                        output::write_file(&dir.join(&f.name), progress, |w| {
+                            w.write_all(&f.image.bytes)
+                        })?;
+                    }
+                    output::write_file(&mtl_path, progress, |w| {
+                        io::write_mtl_with_materials(w, list, &names)
+                    })?;
+                }
+                None => output::write_file(&mtl_path, progress, |w| io::write_mtl(w))?,
+            }
             output::via_temp_path(path, progress, |temp| {
                 let mut out = create(temp)?;
-                io::write_obj(&mut out, objects, Some(&mtl_name)).map_err(mapped)?;
+                io::write_obj_with_materials(&mut out, objects, materials, Some(&mtl_name))
+                    .map_err(mapped)?;
                 std::io::Write::flush(&mut out)
                     .map_err(|e| CliError::input(format!("{}: cannot write: {e}", path.display())))
             })
         }
         MeshFormat::Glb => output::via_temp_path(path, progress, |temp| {
             let mut out = create(temp)?;
-            io::write_glb(&mut out, objects).map_err(mapped)?;
+            match materials {
+                Some(list) => io::write_glb_with_materials(&mut out, objects, list),
+                None => io::write_glb(&mut out, objects),
+            }
+            .map_err(mapped)?;
             std::io::Write::flush(&mut out)
                 .map_err(|e| CliError::input(format!("{}: cannot write: {e}", path.display())))
         }),
@@ -168,14 +257,14 @@ fn save(
 /// mesh that was flipped, merged slivers, ...). Every library error describes the input
 /// (the mesh or the parameters), so it is bad input (exit code 2).
 pub fn fracture(
-    mesh: &TriMesh,
+    model: &Model,
     config: &FractureConfig,
 ) -> Result<(Fracture, Vec<String>), CliError> {
     let params = FractureParams {
         method: method_params(&config.method),
         seed: config.seed,
     };
-    let mut result = shatter_geom::fracture::fracture(mesh, &params)
+    let mut result = shatter_geom::fracture::fracture_model(model, &params)
         .map_err(|e| CliError::input(format!("{}: {e}", config.describe())))?;
     let warnings = std::mem::take(&mut result.warnings);
     Ok((result, warnings))

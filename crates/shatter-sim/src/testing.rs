@@ -2,7 +2,8 @@
 //!
 //! Used by the tests and benchmarks, and by scenes through the `grid` method.
 
-use shatter_geom::fracture::{Bond, Fracture, Fragment};
+use shatter_geom::fracture::{Bond, Fracture, Fragment, interior_material};
+use shatter_geom::model::Material;
 use shatter_geom::{DMat3, DVec3, TriMesh};
 
 /// A box of `size` (full extents, centred on the origin) cut into `cells[0] × cells[1] ×
@@ -70,6 +71,8 @@ pub fn box_grid_fracture(cells: [u32; 3], size: DVec3) -> Fracture {
     Fracture {
         fragments,
         bonds,
+        // Material 0 on the surface, 1 (interior) on the cut faces.
+        materials: vec![Material::default(), interior_material()],
         ..Default::default()
     }
 }
@@ -185,9 +188,12 @@ pub fn box_fragment(lo: DVec3, hi: DVec3, on_boundary: [bool; 6]) -> Fragment {
             e.x * e.x + e.y * e.y,
         ) * (volume / 12.0),
     );
+    let material = interior.iter().map(|&i| u32::from(i)).collect();
     Fragment {
         mesh: TriMesh::new(corners.clone(), triangles),
         interior,
+        corners: Default::default(),
+        material,
         convex_pieces: vec![corners],
         volume,
         centroid: (lo + hi) / 2.0,

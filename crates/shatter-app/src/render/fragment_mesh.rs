@@ -91,6 +91,8 @@ mod tests {
         Fragment {
             mesh,
             interior,
+            corners: Default::default(),
+            material: vec![0; 4],
             convex_pieces: vec![],
             volume: 1.0 / 6.0,
             centroid: DVec3::splat(0.25),

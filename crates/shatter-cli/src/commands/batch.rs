@@ -130,12 +130,17 @@ fn one(
         ..config.clone()
     };
     let work = || -> Result<FractureReport, CliError> {
-        let (mesh, mut warnings) = load_source(&config)?;
-        check_fracture(ctx, &mesh, &config)?;
-        let (fracture, more, millis) = fracture_timed(&mesh, &config)?;
+        let (model, mut warnings) = load_source(&config)?;
+        check_fracture(ctx, &model.mesh, &config)?;
+        let (fracture, more, millis) = fracture_timed(&model, &config)?;
         warnings.extend(more);
         library::write_fracture(output, format, &fracture, &ctx.progress)?;
-        Ok(FractureReport::new(&mesh, &fracture, millis, warnings))
+        Ok(FractureReport::new(
+            &model.mesh,
+            &fracture,
+            millis,
+            warnings,
+        ))
     };
     let result =
         std::panic::catch_unwind(std::panic::AssertUnwindSafe(work)).unwrap_or_else(|_| {

@@ -422,7 +422,7 @@ fn plots(
 /// Times one creation: the fracture and, when asked, building the simulation object
 /// with the thesis's bond model (a body per fragment, a fixed joint per bond).
 fn create_once(
-    mesh: &shatter_geom::TriMesh,
+    mesh: &shatter_geom::model::Model,
     config: &FractureConfig,
     with_bodies: bool,
 ) -> Result<Sample, CliError> {
@@ -460,10 +460,11 @@ fn build_bodies_ms(fracture: Fracture) -> Result<f64, CliError> {
 /// memory is the largest case's.
 fn creation_estimate(
     config: &CreationConfig,
-    meshes: &[(ShapeName, shatter_geom::TriMesh)],
+    meshes: &[(ShapeName, shatter_geom::model::Model)],
 ) -> Estimate {
     let mut total = Estimate::default();
-    for (model, mesh) in meshes {
+    for (model, loaded) in meshes {
+        let mesh = &loaded.mesh;
         for &placement in &config.placements {
             let runs = |count: usize, n: f64| {
                 let (_, e) = fracture_estimate(mesh, &fracture_config(*model, placement, count, 0));

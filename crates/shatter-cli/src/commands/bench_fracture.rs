@@ -138,8 +138,8 @@ pub fn run(args: &BenchFractureArgs, ctx: &Context) -> Result<(), CliError> {
     let mut total = Estimate::default();
     for case in cases() {
         let config = config_of(&case);
-        let (mesh, _) = load_source(&config)?;
-        let (_, e) = fracture_estimate(&mesh, &config);
+        let (model, _) = load_source(&config)?;
+        let (_, e) = fracture_estimate(&model.mesh, &config);
         total.bytes = total.bytes.max(e.bytes);
         total.seconds += e.seconds * (f64::from(args.runs) + 1.0);
     }
@@ -161,13 +161,13 @@ pub fn run(args: &BenchFractureArgs, ctx: &Context) -> Result<(), CliError> {
     let mut rows = Vec::new();
     for case in cases() {
         let config = config_of(&case);
-        let (mesh, _) = load_source(&config)?;
+        let (model, _) = load_source(&config)?;
         ctx.progress.check()?;
-        let (warm, _, _) = fracture_timed(&mesh, &config)?;
+        let (warm, _, _) = fracture_timed(&model, &config)?;
         let mut times = Vec::with_capacity(args.runs as usize);
         for _ in 0..args.runs {
             ctx.progress.check()?;
-            let (_, _, ms) = fracture_timed(&mesh, &config)?;
+            let (_, _, ms) = fracture_timed(&model, &config)?;
             times.push(ms);
         }
         bar.tick(case.name);

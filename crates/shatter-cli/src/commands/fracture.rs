@@ -7,6 +7,7 @@ use clap::{ArgGroup, Args, ValueEnum};
 use serde::Serialize;
 use shatter_geom::budget::{Estimate, format_count};
 use shatter_geom::fracture::Fracture;
+use shatter_geom::model::Model;
 use shatter_geom::{DVec3, TriMesh};
 
 use crate::args::{MeshFormat, ShapeName, check_writable, parse_vec3, validate_scale};
@@ -492,11 +493,12 @@ pub fn check_fracture(
     Ok(estimate)
 }
 
-/// Loads (and scales) the mesh a configuration names, repairs a file's model (unless
-/// `strict`) and checks that it is a valid solid; returns it with any warnings (the
-/// reader's, each repair's, an inward mesh flipped).
-pub fn load_source(config: &FractureConfig) -> Result<(TriMesh, Vec<String>), CliError> {
-    let (mesh, origin, mut warnings): (TriMesh, String, Vec<String>) = match &config.source {
+/// Loads (and scales) the model a configuration names — mesh, UVs, normals, colours and
+/// materials; a built-in shape is a bare mesh — repairs a file's model (unless
+/// `strict`) and checks that its mesh is a valid solid; returns it with any warnings
+/// (the reader's, each repair's, an inward mesh flipped).
+pub fn load_source(config: &FractureConfig) -> Result<(Model, Vec<String>), CliError> {
+    let (model, origin, mut warnings): (Model, String, Vec<String>) = match &config.source {
         MeshSource::File(path) => {
             let loaded = library::load_model(path)?;
             let origin = path.display().to_string();
@@ -513,26 +515,27 @@ pub fn load_source(config: &FractureConfig) -> Result<(TriMesh, Vec<String>), Cl
                 );
                 model
             };
-            (model.mesh, origin, warnings)
+            (model, origin, warnings)
         }
         MeshSource::Shape(name) => (
-            library::builtin_shape(*name)?,
+            Model::from_mesh(library::builtin_shape(*name)?),
             format!("shape {name}"),
             Vec::new(),
         ),
     };
-    let mut mesh = library::scaled(mesh, config.scale);
-    warnings.extend(library::validate_solid(&mut mesh, &origin)?);
-    Ok((mesh, warnings))
+    let mut model = library::scaled_model(model, config.scale);
+    warnings.extend(library::validate_model(&mut model, &origin)?);
+    Ok((model, warnings))
 }
 
-/// Fractures an already loaded mesh; returns the fracture, its warnings and the time in ms.
+/// Fractures an already loaded model; returns the fracture, its warnings and the time in
+/// ms (the attributes included).
 pub fn fracture_timed(
-    mesh: &TriMesh,
+    model: &Model,
     config: &FractureConfig,
 ) -> Result<(Fracture, Vec<String>, f64), CliError> {
     let start = Instant::now();
-    let (fracture, warnings) = library::fracture(mesh, config)?;
+    let (fracture, warnings) = library::fracture(model, config)?;
     let millis = start.elapsed().as_secs_f64() * 1e3;
     Ok((fracture, warnings, millis))
 }
@@ -543,15 +546,16 @@ pub fn run(args: &FractureArgs, ctx: &Context) -> Result<(), CliError> {
         return super::batch::run(args, ctx);
     }
     let (config, out) = args.validate(ctx)?;
-    let (mesh, mut warnings) = load_source(&config)?;
-    let estimate = check_fracture(ctx, &mesh, &config)?;
+    let (model, mut warnings) = load_source(&config)?;
+    let mesh = &model.mesh;
+    let estimate = check_fracture(ctx, mesh, &config)?;
     ctx.progress.check()?;
     let bar = ctx.follow(
         &format!("fracture ({})", config.describe()),
         &estimate,
         args.json,
     );
-    let (fracture, more_warnings, millis) = fracture_timed(&mesh, &config)?;
+    let (fracture, more_warnings, millis) = fracture_timed(&model, &config)?;
     drop(bar);
     ctx.progress.check()?;
     if args.validate {
@@ -566,7 +570,7 @@ pub fn run(args: &FractureArgs, ctx: &Context) -> Result<(), CliError> {
     if let Some((path, format)) = &out {
         library::write_fracture(path, *format, &fracture, &ctx.progress)?;
     }
-    let mut report = FractureReport::new(&mesh, &fracture, millis, warnings);
+    let mut report = FractureReport::new(mesh, &fracture, millis, warnings);
     report.estimate = Some(estimate.into());
     report.peak_rss_bytes = memory::peak_rss_bytes();
     if args.json_bonds {

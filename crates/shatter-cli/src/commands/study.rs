@@ -477,8 +477,8 @@ fn case_config(case: &Case) -> FractureConfig {
 /// `shatter fracture`).
 fn fracture_case(case: &Case) -> Result<Fracture, CliError> {
     let config = case_config(case);
-    let (mesh, _) = load_source(&config)?;
-    let (fracture, _, _) = fracture_timed(&mesh, &config)?;
+    let (model, _) = load_source(&config)?;
+    let (fracture, _, _) = fracture_timed(&model, &config)?;
     Ok(fracture)
 }
 

@@ -5,6 +5,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
+use super::attributes::{Source, attach, tags_of_flags};
 use super::bonds::merge::merge_small;
 use super::kernel::convex::convex_pieces;
 use super::kernel::{Piece, is_surface, mesh_scale};
@@ -18,6 +19,7 @@ use super::types::{Bond, Fracture, Fragment};
 use super::validate::validated_piece;
 use crate::TriMesh;
 use crate::mesh::mass_properties;
+use crate::model::{Corners, Model};
 
 /// Relative distance (of the mesh's size) within which a vertex counts as on a plane.
 const PLANE_EPS: f64 = 1e-10;
@@ -57,6 +59,79 @@ const PLANE_EPS: f64 = 1e-10;
 /// input's) and the results are mapped back. A volume, inertia tensor or bond area beyond
 /// `f64` is refused with [`FractureError::OutOfRange`].
 pub fn fracture(mesh: &TriMesh, params: &FractureParams) -> Result<Fracture, FractureError> {
+    let (mut result, tags) = fracture_tagged(mesh, params)?;
+    let none = Corners::default();
+    let source = Source {
+        mesh,
+        corners: &none,
+        material: None,
+        materials: &[],
+    };
+    attach(&mut result, &tags, &source);
+    Ok(result)
+}
+
+/// Fractures a model: [`fracture`] of its mesh, the fragments carrying its attributes.
+///
+/// Each fragment's surface triangles keep the material of the input triangle they lie
+/// on, and their corners the input's UVs, normals and colours interpolated at the
+/// corners' positions (exact along cut edges; seams stay seams). Interior (cut)
+/// triangles get the `interior` material, appended to the model's list in
+/// [`Fracture::materials`], flat normals, white colours and planar UVs: a projection
+/// onto the cut's plane, in a basis of the plane alone and one world-space scale for
+/// the whole object (one over its largest extent), so both sides of a crack map a point
+/// to the same UV. Attributes the model lacks stay absent.
+///
+/// ```
+/// use shatter_geom::fracture::{fracture_model, FractureParams, Method};
+/// use shatter_geom::{model::Model, shapes, DVec3};
+///
+/// let mut model = Model::from_mesh(shapes::cube());
+/// // A UV per corner: u = x + ½, v = y + ½ on every face (the cube spans −½..½).
+/// let uv: Vec<[[f32; 2]; 3]> = model.mesh.triangles.iter()
+///     .map(|t| t.map(|i| { let p = model.mesh.positions[i as usize];
+///                          [(p.x + 0.5) as f32, (p.y + 0.5) as f32] }))
+///     .collect();
+/// model.corners.uv = Some(uv);
+/// let params = FractureParams {
+///     method: Method::Slice { pieces: 0, planes: Some(vec![(DVec3::ZERO, DVec3::X)]) },
+///     seed: 0,
+/// };
+/// let result = fracture_model(&model, &params)?;
+/// assert_eq!(result.materials.last().unwrap().name, "interior");
+/// for f in &result.fragments {
+///     let uv = f.corners.uv.as_ref().unwrap();
+///     for (t, tri) in f.mesh.triangles.iter().enumerate() {
+///         if f.interior[t] { continue; }
+///         // A cut corner at x = 0 gets u = ½, as on the input's triangle.
+///         for k in 0..3 {
+///             let p = f.mesh.positions[tri[k] as usize];
+///             assert!((uv[t][k][0] as f64 - (p.x + 0.5)).abs() < 1e-6);
+///         }
+///     }
+/// }
+/// # Ok::<(), shatter_geom::fracture::FractureError>(())
+/// ```
+pub fn fracture_model(model: &Model, params: &FractureParams) -> Result<Fracture, FractureError> {
+    model.check()?;
+    let (mut result, tags) = fracture_tagged(&model.mesh, params)?;
+    let source = Source {
+        mesh: &model.mesh,
+        corners: &model.corners,
+        material: Some(&model.material),
+        materials: &model.materials,
+    };
+    attach(&mut result, &tags, &source);
+    Ok(result)
+}
+
+/// The fracture itself: the fragments (without attributes) and, per fragment, the
+/// kernel tag of each triangle (surface tags naming `mesh`'s triangles). The mesh is
+/// moved and scaled into a local frame, fractured there and mapped back.
+fn fracture_tagged(
+    mesh: &TriMesh,
+    params: &FractureParams,
+) -> Result<(Fracture, Vec<Vec<u64>>), FractureError> {
     mesh.validate_indices()?;
     let frame = Frame::of(mesh);
     let (piece, warnings) = validated_piece(&frame.mesh_to_local(mesh))?;
@@ -67,7 +142,7 @@ pub fn fracture(mesh: &TriMesh, params: &FractureParams) -> Result<Fracture, Fra
     frame.inertia_to_world(inertia, "the mesh's inertia tensor")?;
     let params = local_params(&frame, params)?;
     let is_tetra = matches!(params.method, Method::Tetra { .. });
-    let local = fracture_local(piece, warnings, &params, frame.metric(), &frame)?;
+    let (local, tags) = fracture_local(piece, warnings, &params, frame.metric(), &frame)?;
     // A cut that lost or gained volume is refused, not returned (features far below the
     // cut tolerance, as a body squashed beside a 1e33 spike). Tetra keeps whole
     // tetrahedra on concave meshes (issue 14 part 2), so it is checked only in a per-axis
@@ -75,7 +150,7 @@ pub fn fracture(mesh: &TriMesh, params: &FractureParams) -> Result<Fracture, Fra
     if !is_tetra || frame.is_per_axis() {
         check_volume_sum(&local, volume)?;
     }
-    frame.fracture_to_world(local)
+    Ok((frame.fracture_to_world(local)?, tags))
 }
 
 /// The parameters with the user's points and planes in the local frame.
@@ -147,12 +222,12 @@ fn fracture_local(
     params: &FractureParams,
     metric: DVec3,
     frame: &Frame,
-) -> Result<Fracture, FractureError> {
+) -> Result<(Fracture, Vec<Vec<u64>>), FractureError> {
     let mut rng = ChaCha8Rng::seed_from_u64(params.seed);
     let scale = mesh_scale(&piece);
     let eps = PLANE_EPS * scale;
     let volume = piece.volume();
-    let (fragments, bonds) = match &params.method {
+    let (fragments, tags, bonds) = match &params.method {
         Method::Tetra {
             random_vertices,
             skip,
@@ -165,7 +240,9 @@ fn fracture_local(
                 center: *center,
                 placement: *placement,
             };
-            tetra(&piece, volume, &opt, &mut rng, &mut warnings)?
+            let (fragments, bonds) = tetra(&piece, volume, &opt, &mut rng, &mut warnings)?;
+            let tags = fragments.iter().map(tags_of_flags).collect();
+            (fragments, tags, bonds)
         }
         Method::Voronoi {
             pieces,
@@ -234,11 +311,13 @@ fn fracture_local(
     if fragments.is_empty() {
         return Err(FractureError::NoFragments);
     }
-    Ok(Fracture {
+    let result = Fracture {
         fragments,
         bonds,
+        materials: Vec::new(),
         warnings,
-    })
+    };
+    Ok((result, tags))
 }
 
 fn check_points(list: &[DVec3], what: &'static str) -> Result<(), FractureError> {
@@ -248,14 +327,15 @@ fn check_points(list: &[DVec3], what: &'static str) -> Result<(), FractureError>
     }
 }
 
-/// Fragments of a cut method: small pieces merged into neighbours, then built.
+/// Fragments of a cut method: small pieces merged into neighbours, then built; with
+/// each fragment's triangle tags.
 fn finish_cut(
     pieces: Vec<Piece>,
     bonds: Vec<Bond>,
     volume: f64,
     eps: f64,
     warnings: &mut Vec<String>,
-) -> (Vec<Fragment>, Vec<Bond>) {
+) -> (Vec<Fragment>, Vec<Vec<u64>>, Vec<Bond>) {
     let (pieces, bonds, merged) = merge_small(pieces, bonds, SLIVER_VOLUME_FRACTION * volume, eps);
     if merged.lonely > 0 {
         warnings.push(format!(
@@ -271,15 +351,15 @@ fn finish_cut(
         ));
     }
     // Independent per fragment, so in parallel (order kept).
-    let fragments = pieces
+    let (fragments, tags) = pieces
         .into_par_iter()
         .with_max_len(1)
         .map(|mut p| {
             p.weld();
-            fragment(&p)
+            (fragment(&p), p.tags)
         })
-        .collect();
-    (fragments, bonds)
+        .unzip();
+    (fragments, tags, bonds)
 }
 
 /// A fragment from a closed cut piece.
@@ -288,6 +368,9 @@ pub(crate) fn fragment(p: &Piece) -> Fragment {
     Fragment {
         mesh: TriMesh::new(p.pos.clone(), p.tris.clone()),
         interior: p.tags.iter().map(|&t| !is_surface(t)).collect(),
+        // Set at the end, from the tags (see `attributes`).
+        corners: Corners::default(),
+        material: Vec::new(),
         convex_pieces: convex_pieces(p),
         volume,
         centroid,

@@ -3,16 +3,19 @@
 //! Three methods ([`Method`]): the thesis's Delaunay tetrahedra (`Tetra`), Voronoi cells
 //! clipped exactly to the mesh (`Voronoi`, convex or concave meshes) and plane slicing
 //! (`Slice`). Every method returns a [`Fracture`]: closed, outward fragments whose
-//! triangles are flagged surface or interior, convex pieces for collision, mass
+//! triangles are flagged surface or interior (with the input's UVs, normals, colours and
+//! materials through [`fracture_model`]), convex pieces for collision, mass
 //! properties, and the bond graph of fragments sharing a face.
 //!
 //! Folders, one per concern: `kernel` (the working solid `Piece`, planes, exact clipping
 //! with caps kept as polygons, cap triangulation, the convex decomposition for
 //! collision), `methods` (`tetra`, `voronoi`, `slice`), `seeds` (patterns, inside tests
 //! and sampling), `bonds` (bonds through matching caps, merging small pieces); beside them
-//! `params` and `types` (the public types), `validate` (input checks) and `entry` (the
-//! public function).
+//! `params` and `types` (the public types), `validate` (input checks), `attributes`
+//! (UVs, normals, colours and materials of the fragments, from their positions and the
+//! kernel's tags) and `entry` (the public functions).
 
+mod attributes;
 mod bonds;
 mod check;
 mod entry;
@@ -24,8 +27,9 @@ mod seeds;
 mod types;
 mod validate;
 
+pub use attributes::interior_material;
 pub use check::{InvalidFracture, VOLUME_TOLERANCE};
-pub use entry::fracture;
+pub use entry::{fracture, fracture_model};
 pub use methods::tetra::{SLIVER_QUALITY, SLIVER_VOLUME_FRACTION};
 pub use normalize::ANISOTROPY;
 pub use params::{FractureError, FractureParams, Method, Pattern, Placement};

@@ -285,6 +285,7 @@ impl Frame {
         Ok(Fracture {
             fragments,
             bonds,
+            materials: f.materials,
             warnings: f.warnings,
         })
     }
@@ -312,6 +313,9 @@ impl Frame {
             volume: self.volume_to_world(g.volume, "a fragment's volume")?,
             centroid: self.point_to_world(g.centroid),
             inertia: self.inertia_to_world(g.inertia, "a fragment's inertia tensor")?,
+            // Attributes are attached after the fracture is back in the world frame.
+            corners: g.corners,
+            material: g.material,
         })
     }
 

@@ -4,6 +4,7 @@ use glam::DVec3;
 
 use crate::delaunay::DelaunayError;
 use crate::mesh::MeshError;
+use crate::model::ModelError;
 
 /// How the random points of the [`Method::Tetra`] method are placed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -104,6 +105,9 @@ pub enum FractureError {
     /// self-touching, inconsistently wound or without volume); the message has counts.
     #[error("invalid mesh: {0}")]
     Mesh(#[from] MeshError),
+    /// The model's attributes do not fit its mesh (see [`crate::model::Model::check`]).
+    #[error("invalid model: {0}")]
+    Model(#[from] ModelError),
     /// A fragment count below one.
     #[error("the number of pieces must be at least 1 (got {0})")]
     TooFewPieces(usize),

@@ -3,6 +3,7 @@
 use glam::{DMat3, DVec3};
 
 use crate::TriMesh;
+use crate::model::{Corners, Material};
 
 /// One piece of a fractured object.
 #[derive(Debug, Clone)]
@@ -12,6 +13,14 @@ pub struct Fragment {
     /// Per triangle of `mesh`: `true` for an interior (cut) face, `false` for a face on
     /// the original surface.
     pub interior: Vec<bool>,
+    /// Per triangle corner of `mesh`: UVs, normals and colours, present when the input
+    /// had them (see [`fracture_model`](super::fracture_model)). Surface corners carry
+    /// the input's values interpolated at their positions; interior corners a planar
+    /// projection (UVs), the face's normal and white.
+    pub corners: Corners,
+    /// Per triangle of `mesh`: its material, an index into [`Fracture::materials`]
+    /// (surface triangles keep the input's; interior ones have the `interior` material).
+    pub material: Vec<u32>,
     /// Convex pieces for collision: each a point cloud whose convex hull has a
     /// non-degenerate volume. Their union approximates the fragment.
     pub convex_pieces: Vec<Vec<DVec3>>,
@@ -55,6 +64,11 @@ pub struct Bond {
 /// assert_eq!(result.bonds_of(0).count(), 1);
 /// assert!((result.bonds[0].area - 1.0).abs() < 1e-12);
 /// assert!((result.total_volume() - 1.0).abs() < 1e-12);
+/// // A bare mesh: a `surface` material, then `interior` for the cut faces.
+/// assert_eq!(result.materials.len(), 2);
+/// assert_eq!(result.materials[1].name, "interior");
+/// let f = &result.fragments[0];
+/// assert!(f.material.iter().zip(&f.interior).all(|(&m, &i)| (m == 1) == i));
 /// # Ok::<(), shatter_geom::fracture::FractureError>(())
 /// ```
 #[derive(Debug, Clone, Default)]
@@ -63,6 +77,9 @@ pub struct Fracture {
     pub fragments: Vec<Fragment>,
     /// Bonds between fragments sharing a face, sorted by `(a, b)`, each pair once.
     pub bonds: Vec<Bond>,
+    /// The materials [`Fragment::material`] indexes: the input's (one default
+    /// `surface` material for a bare mesh), then `interior` for the cut faces.
+    pub materials: Vec<Material>,
     /// Repairs and losses worth telling the user about (an inward mesh flipped, tiny
     /// isolated tetrahedra dropped, ...). Empty when there was nothing to say.
     pub warnings: Vec<String>,

@@ -51,7 +51,10 @@ pub use load::{
     LoadedModel, MAX_TRIANGLES, MeshFormat, load_mesh, load_model, load_model_from, parse_mesh,
     parse_model, parse_model_with,
 };
-pub use obj::{save_obj, save_obj_with_materials, write_mtl, write_obj, write_obj_with_materials};
+pub use obj::{
+    TextureFile, save_obj, save_obj_with_materials, texture_files, write_mtl,
+    write_mtl_with_materials, write_obj, write_obj_with_materials,
+};
 pub use stl::{StlFormat, save_stl, write_stl};
 pub use warning::{LoadWarning, WarningKind};
 

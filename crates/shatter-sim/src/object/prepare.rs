@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use glam::Vec3;
 use shatter_geom::fracture::{Bond, Fracture, Fragment};
+use shatter_geom::model::Corners;
 use shatter_geom::{DMat3, DVec3, TriMesh};
 
 use crate::error::SimError;
@@ -158,6 +159,7 @@ pub fn prepare(fracture: &Fracture, scale: Vec3, density: f32, anchored: bool) -
         fracture: Arc::new(Fracture {
             fragments,
             bonds,
+            materials: fracture.materials.clone(),
             ..Default::default()
         }),
         pieces,
@@ -194,6 +196,22 @@ fn anchored_fragments(fragments: &[Fragment], anchored: bool) -> Vec<bool> {
     fragments.iter().map(|f| lowest(f) <= lo + eps).collect()
 }
 
+/// Corner attributes of a mesh scaled by `s`: UVs and colours as they are, normals by the
+/// inverse scale (the inverse transpose of a diagonal scale), renormalised.
+fn scale_corners(c: &Corners, s: DVec3) -> Corners {
+    let mut out = c.clone();
+    if s != DVec3::ONE
+        && let Some(normals) = &mut out.normal
+    {
+        for n in normals.iter_mut().flatten() {
+            let m = (DVec3::new(f64::from(n[0]), f64::from(n[1]), f64::from(n[2])) / s)
+                .normalize_or_zero();
+            *n = m.as_vec3().to_array();
+        }
+    }
+    out
+}
+
 fn scale_fragment(f: &Fragment, s: DVec3) -> Fragment {
     let det = s.x * s.y * s.z;
     // Second moment C = ½·tr(I)·Id − I scales as det·S·C·S; back to I' = tr(C')·Id − C'.
@@ -207,6 +225,8 @@ fn scale_fragment(f: &Fragment, s: DVec3) -> Fragment {
             f.mesh.triangles.clone(),
         ),
         interior: f.interior.clone(),
+        corners: scale_corners(&f.corners, s),
+        material: f.material.clone(),
         convex_pieces: f
             .convex_pieces
             .iter()

@@ -169,7 +169,8 @@ fn concavity(p: &Piece, t: usize, nbr: &[[u32; 3]], tol: f64) -> Option<(f64, Pl
     // A cap lies on a plane the whole solid is behind (a cell face, a slicing plane), so
     // no vertex lies in front of it, and its edges with the surface are convex: only
     // edges between two surface triangles can be concave. (The decomposition's own
-    // cuts are tagged as surface, so they are tested like it.)
+    // cuts are tagged as surface of no input triangle, [`SURFACE`], so they are tested
+    // like it.)
     if !is_surface(p.tags[t]) {
         return None;
     }

@@ -16,5 +16,5 @@ mod face_tests;
 pub(crate) mod fast_path_tests;
 
 pub(crate) use face::Face;
-pub(crate) use piece::{Piece, SURFACE, is_surface, mesh_scale};
+pub(crate) use piece::{Piece, SURFACE, is_surface, mesh_scale, source_triangle};
 pub(crate) use plane::Plane;

@@ -10,21 +10,42 @@ use crate::TriMesh;
 use crate::mesh::position_key;
 use crate::util::{FastMap, UnionFind};
 
-/// Tag of a triangle on the original surface (not created by a cut).
-pub(crate) const SURFACE: u64 = u64::MAX;
+/// Bit set in the tag of a triangle on the original surface (not created by a cut); the
+/// low 32 bits then name the input triangle it lies on ([`source_triangle`]).
+const SURFACE_BIT: u64 = 1 << 63;
+/// Low bits of a surface tag that name no input triangle.
+const NO_SOURCE: u64 = u32::MAX as u64;
+
+/// Tag of a surface triangle that lies on no input triangle (the box a Voronoi cell is
+/// cut from, the convex decomposition's own cuts): `u64::MAX`.
+pub(crate) const SURFACE: u64 = SURFACE_BIT | NO_SOURCE;
+
+/// Tag of a surface triangle lying on input triangle `t` (`u32::MAX` names none: the
+/// tag is then [`SURFACE`]).
+pub(crate) fn surface_tag(t: u32) -> u64 {
+    SURFACE_BIT | u64::from(t)
+}
 
 /// Whether a triangle's tag marks the original surface (rather than a cut's cap).
-/// Code outside this module asks this, never compares with [`SURFACE`], so that a
-/// surface tag can carry more (e.g. the source triangle) without changing its callers.
+/// Code outside this module asks this, never compares with [`SURFACE`]: a surface tag
+/// carries the source triangle ([`source_triangle`]).
 pub(crate) fn is_surface(tag: u64) -> bool {
-    tag == SURFACE
+    tag & SURFACE_BIT != 0
+}
+
+/// The input triangle a surface triangle lies on; `None` for a cap (a cut's plane id)
+/// and for a surface triangle of no input triangle ([`SURFACE`]).
+pub(crate) fn source_triangle(tag: u64) -> Option<u32> {
+    (is_surface(tag) && tag & NO_SOURCE != NO_SOURCE).then_some((tag & NO_SOURCE) as u32)
 }
 
 /// A closed solid being cut: welded positions, triangles and one tag per triangle, and
 /// possibly caps not yet triangulated ([`Face`]s; see [`Piece::close_faces`]).
 ///
-/// A tag is [`SURFACE`] for original surface triangles, or the id of the plane whose cap
-/// created the triangle (the methods give planes ids they can decode for bonds).
+/// A tag is a surface tag for original surface triangles ([`surface_tag`]: the input
+/// triangle it lies on; splitting a triangle keeps its tag), or the id of the plane whose
+/// cap created the triangle (below 2⁶³; the methods give planes ids they can decode for
+/// bonds).
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Piece {
     pub pos: Vec<DVec3>,
@@ -35,7 +56,8 @@ pub(crate) struct Piece {
 
 impl Piece {
     /// A piece from a mesh, welding vertices at exactly equal positions; all triangles
-    /// are surface triangles.
+    /// are surface triangles, each tagged with its index in `mesh` ([`surface_tag`]).
+    /// Triangles that repeat a vertex after the weld are dropped.
     pub fn from_mesh_welded(mesh: &TriMesh) -> Self {
         let mut map: FastMap<[u64; 3], u32> = FastMap::default();
         let mut pos = Vec::with_capacity(mesh.positions.len());
@@ -49,13 +71,16 @@ impl Piece {
                 })
             })
             .collect();
-        let tris: Vec<[u32; 3]> = mesh
-            .triangles
-            .iter()
-            .map(|t| t.map(|i| remap[i as usize]))
-            .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
-            .collect();
-        let tags = vec![SURFACE; tris.len()];
+        let mut tris = Vec::with_capacity(mesh.triangles.len());
+        let mut tags = Vec::with_capacity(mesh.triangles.len());
+        for (index, t) in mesh.triangles.iter().enumerate() {
+            let t = t.map(|i| remap[i as usize]);
+            if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
+                tris.push(t);
+                // (A mesh of 2³² triangles or more is refused long before this.)
+                tags.push(u32::try_from(index).map_or(SURFACE, surface_tag));
+            }
+        }
         Self {
             pos,
             tris,

@@ -291,6 +291,9 @@ fn group_fragment(
     Fragment {
         mesh,
         interior,
+        // Set at the end from the interior flags (`attributes::tags_of_flags`).
+        corners: Default::default(),
+        material: Vec::new(),
         convex_pieces,
         volume,
         centroid,

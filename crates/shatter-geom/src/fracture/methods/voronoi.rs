@@ -242,7 +242,9 @@ fn cell_faces(
     Some(poly.tags)
 }
 
-/// A closed box around `mesh` (its bounds grown by a tenth), all faces tagged surface.
+/// A closed box around `mesh` (its bounds grown by a tenth), all faces tagged surface of
+/// no input triangle ([`SURFACE`]: the box is not the input; only its cells' cap tags are
+/// used).
 fn box_piece(mesh: &Piece) -> Piece {
     let (lo, hi) = bounds(&mesh.pos);
     let pad = (hi - lo) * 0.1 + DVec3::splat(1e-9);

@@ -8,5 +8,6 @@ mod write;
 
 pub(crate) use read::read_obj;
 pub use write::{
-    save_obj, save_obj_with_materials, write_mtl, write_obj, write_obj_with_materials,
+    TextureFile, save_obj, save_obj_with_materials, texture_files, write_mtl,
+    write_mtl_with_materials, write_obj, write_obj_with_materials,
 };

@@ -251,26 +251,10 @@ fn save(
         .file_stem()
         .map(|s| clean(&s.to_string_lossy()))
         .unwrap_or_else(|| "model".into());
-    // Each image once, under a name of its own next to the output.
-    let mut written: HashMap<*const Image, String> = HashMap::new();
-    let mut taken: Vec<String> = Vec::new();
-    let mut textures = Vec::new();
-    for m in &materials.list {
-        let Some(t) = &m.base_color_texture else {
-            textures.push(None);
-            continue;
-        };
-        let key = Arc::as_ptr(&t.image);
-        if let Some(name) = written.get(&key) {
-            textures.push(Some(name.clone()));
-            continue;
-        }
-        let name = texture_name(&t.image, &stem, &taken);
-        let file: PathBuf = dir.join(&name);
-        std::fs::write(&file, &t.image.bytes).map_err(|e| MeshIoError::io(&file, e))?;
-        taken.push(name.clone());
-        written.insert(key, name.clone());
-        textures.push(Some(name));
+    let (textures, files) = texture_files_of(&stem, &materials.list);
+    for f in &files {
+        let file: PathBuf = dir.join(&f.name);
+        std::fs::write(&file, &f.image.bytes).map_err(|e| MeshIoError::io(&file, e))?;
     }
     let write = |p: &Path, f: &dyn Fn(&mut dyn Write) -> std::io::Result<()>| {
         let file = std::fs::File::create(p).map_err(|e| MeshIoError::io(p, e))?;
@@ -285,6 +269,81 @@ fn save(
     write(&mtl_path, &|out| {
         write_materials(out, &materials.list, &textures)
     })
+}
+
+/// A texture image to write next to an OBJ file, under `name` (the name its MTL file's
+/// `map_Kd` gives).
+#[derive(Debug, Clone)]
+pub struct TextureFile {
+    /// The file name (no folder), unique among the output's textures.
+    pub name: String,
+    /// The image, whose bytes are the file.
+    pub image: Arc<Image>,
+}
+
+/// The texture files an OBJ named `stem` (file name without extension) with these
+/// materials has next to it, each image once (`{stem}_{image name}.{ext}`), and per
+/// material of the writer's list (the materials, plus `interior` when they have none) the
+/// name its `map_Kd` gives. For writers that write the files themselves (e.g. through
+/// temporary files); [`save_obj_with_materials`] does it all.
+///
+/// ```
+/// use std::sync::Arc;
+/// use shatter_geom::io;
+/// use shatter_geom::model::{Image, ImageFormat, Material, Texture};
+/// let image = Arc::new(Image { name: "wood.png".into(), format: ImageFormat::Png,
+///                              bytes: vec![1, 2, 3], source: None });
+/// let mut m = Material::named("wood");
+/// m.base_color_texture = Some(Texture { image });
+/// let (names, files) = io::texture_files("crate", &[m]);
+/// assert_eq!(names, [Some("crate_wood.png".to_string()), None]); // + interior
+/// assert_eq!(files.len(), 1);
+/// let mut mtl = Vec::new();
+/// io::write_mtl_with_materials(&mut mtl, &[Material::named("wood")], &names).unwrap();
+/// assert!(String::from_utf8(mtl).unwrap().contains("map_Kd crate_wood.png"));
+/// ```
+pub fn texture_files(
+    stem: &str,
+    materials: &[Material],
+) -> (Vec<Option<String>>, Vec<TextureFile>) {
+    texture_files_of(&clean(stem), &ExportMaterials::new(Some(materials)).list)
+}
+
+fn texture_files_of(stem: &str, list: &[Material]) -> (Vec<Option<String>>, Vec<TextureFile>) {
+    let mut written: HashMap<*const Image, String> = HashMap::new();
+    let mut files: Vec<TextureFile> = Vec::new();
+    let mut textures = Vec::new();
+    for m in list {
+        let Some(t) = &m.base_color_texture else {
+            textures.push(None);
+            continue;
+        };
+        let key = Arc::as_ptr(&t.image);
+        if let Some(name) = written.get(&key) {
+            textures.push(Some(name.clone()));
+            continue;
+        }
+        let taken: Vec<String> = files.iter().map(|f| f.name.clone()).collect();
+        let name = texture_name(&t.image, stem, &taken);
+        written.insert(key, name.clone());
+        files.push(TextureFile {
+            name: name.clone(),
+            image: t.image.clone(),
+        });
+        textures.push(Some(name));
+    }
+    (textures, files)
+}
+
+/// Writes the MTL file of the material list `materials` (plus `interior` when it has
+/// none, as the OBJ writer's list), `textures[i]` being the file of material `i`'s
+/// texture (see [`texture_files`]).
+pub fn write_mtl_with_materials<W: Write>(
+    out: W,
+    materials: &[Material],
+    textures: &[Option<String>],
+) -> std::io::Result<()> {
+    write_materials(out, &ExportMaterials::new(Some(materials)).list, textures)
 }
 
 /// A file name for `image` next to the output: `{stem}_{image name}` with the image's

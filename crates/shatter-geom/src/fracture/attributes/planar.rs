@@ -1,0 +1,131 @@
+//! Planar UVs of interior faces: a basis per cap plane that depends on the plane alone
+//! (not on which side sees it), and one world-space frame for the whole object.
+
+use glam::DVec3;
+
+use crate::fracture::Fragment;
+use crate::fracture::kernel::is_surface;
+use crate::util::FastMap;
+
+/// Tag of an interior triangle whose plane is its own (the tetra method's faces): its
+/// basis comes from its three corners, taken in a fixed order, so the two sides of a
+/// shared face (the same corners, wound the other way) get the same one. Below the
+/// surface tags and above any cap plane id the methods make.
+pub(crate) const OWN_PLANE: u64 = (1 << 63) - 1;
+
+/// An orthonormal basis `(u, v, n)` of a plane, `n` its unit normal up to sign.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Basis {
+    pub u: DVec3,
+    pub v: DVec3,
+    pub n: DVec3,
+}
+
+impl Basis {
+    /// The canonical basis of the plane with normal `±normal`: `n` is the normal turned
+    /// so that its largest component (the first of equals) is positive, `u` the next
+    /// axis (cyclically) made orthogonal to `n`, `v = n × u`. Both orientations of a
+    /// plane give the same basis.
+    pub fn canonical(normal: DVec3) -> Basis {
+        let Some(n) = normal.try_normalize() else {
+            return Basis {
+                u: DVec3::X,
+                v: DVec3::Y,
+                n: DVec3::Z,
+            };
+        };
+        let a = n.abs();
+        let k = if a.x >= a.y && a.x >= a.z {
+            0
+        } else if a.y >= a.z {
+            1
+        } else {
+            2
+        };
+        let n = if n[k] < 0.0 { -n } else { n };
+        // |n[k]| ≥ 1/√3, so the next axis is at least that far from n: no cancellation.
+        let e = DVec3::AXES[(k + 1) % 3];
+        let u = (e - n * n.dot(e)).normalize();
+        Basis {
+            u,
+            v: n.cross(u),
+            n,
+        }
+    }
+
+    /// The canonical basis of a triangle's plane, from its corners sorted by position
+    /// (so every winding of the same corners gives the same basis).
+    pub fn of_triangle(p: [DVec3; 3]) -> Basis {
+        let mut q = p;
+        q.sort_by(|a, b| {
+            a.x.total_cmp(&b.x)
+                .then(a.y.total_cmp(&b.y))
+                .then(a.z.total_cmp(&b.z))
+        });
+        Basis::canonical((q[1] - q[0]).cross(q[2] - q[0]))
+    }
+}
+
+/// The object's frame for planar UVs: `uv = ((p − origin)·u, (p − origin)·v) · scale`,
+/// with `origin` the low corner of the input's bounds and `scale` one over its largest
+/// extent (a texture then spans the object once).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct UvFrame {
+    origin: DVec3,
+    scale: f64,
+}
+
+impl UvFrame {
+    /// The frame of an object with these positions.
+    pub fn of(positions: &[DVec3]) -> UvFrame {
+        if positions.is_empty() {
+            return UvFrame {
+                origin: DVec3::ZERO,
+                scale: 1.0,
+            };
+        }
+        let (lo, hi) = crate::util::bounds(positions);
+        let extent = (hi - lo).max_element();
+        let scale = if extent > 0.0 && extent.is_finite() {
+            1.0 / extent
+        } else {
+            1.0
+        };
+        UvFrame { origin: lo, scale }
+    }
+
+    /// The planar UV of `p` in `basis`.
+    pub fn uv(&self, basis: &Basis, p: DVec3) -> [f32; 2] {
+        let d = p - self.origin;
+        [
+            (d.dot(basis.u) * self.scale) as f32,
+            (d.dot(basis.v) * self.scale) as f32,
+        ]
+    }
+}
+
+/// One basis per cap tag over all fragments: the canonical basis of the sum of the
+/// tag's triangle normals (each turned to agree with the sum so far; in fragment and
+/// triangle order, so the result is deterministic). Every triangle of a tag lies in one
+/// plane, the two sides of a bond included, so they all share the basis.
+pub(crate) fn cap_bases(fragments: &[Fragment], tags: &[Vec<u64>]) -> FastMap<u64, Basis> {
+    let mut sums: FastMap<u64, DVec3> = FastMap::default();
+    for (f, tags) in fragments.iter().zip(tags) {
+        for (tri, &tag) in f.mesh.triangles.iter().zip(tags) {
+            if is_surface(tag) || tag == OWN_PLANE {
+                continue;
+            }
+            let [a, b, c] = tri.map(|i| f.mesh.positions[i as usize]);
+            let n = (b - a).cross(c - a);
+            let s = sums.entry(tag).or_insert(DVec3::ZERO);
+            if s.dot(n) < 0.0 {
+                *s -= n;
+            } else {
+                *s += n;
+            }
+        }
+    }
+    sums.into_iter()
+        .map(|(tag, n)| (tag, Basis::canonical(n)))
+        .collect()
+}
