@@ -83,7 +83,6 @@ cases! {
     cube_voronoi_clustered: "cube", "voronoi_clustered";
     cube_voronoi_radial: "cube", "voronoi_radial";
     cube_voronoi_splinter: "cube", "voronoi_splinter";
-    #[ignore = "issue 14 part 1: a merged part's shared face stays in the fragment as back-to-back triangles"]
     cube_slice: "cube", "slice";
     capsule_tetra_interior: "capsule", "tetra_interior";
     capsule_tetra_thesis: "capsule", "tetra_thesis";
@@ -91,7 +90,6 @@ cases! {
     capsule_voronoi_clustered: "capsule", "voronoi_clustered";
     capsule_voronoi_radial: "capsule", "voronoi_radial";
     capsule_voronoi_splinter: "capsule", "voronoi_splinter";
-    #[ignore = "issue 14 part 1: a merged part's shared face stays in the fragment as back-to-back triangles"]
     capsule_slice: "capsule", "slice";
     cylinder_tetra_interior: "cylinder", "tetra_interior";
     cylinder_tetra_thesis: "cylinder", "tetra_thesis";
@@ -99,39 +97,30 @@ cases! {
     cylinder_voronoi_clustered: "cylinder", "voronoi_clustered";
     cylinder_voronoi_radial: "cylinder", "voronoi_radial";
     cylinder_voronoi_splinter: "cylinder", "voronoi_splinter";
-    #[ignore = "issue 14 part 1: a merged part's shared face stays in the fragment as back-to-back triangles"]
     cylinder_slice: "cylinder", "slice";
     sphere_tetra_interior: "sphere", "tetra_interior";
     sphere_tetra_thesis: "sphere", "tetra_thesis";
     sphere_voronoi_uniform: "sphere", "voronoi_uniform";
     sphere_voronoi_clustered: "sphere", "voronoi_clustered";
-    #[ignore = "issue 14 part 1: merged parts touch along an edge (edge in 4 triangles)"]
     sphere_voronoi_radial: "sphere", "voronoi_radial";
     sphere_voronoi_splinter: "sphere", "voronoi_splinter";
-    #[ignore = "issue 14 part 1: a merged part's shared face stays in the fragment as back-to-back triangles"]
     sphere_slice: "sphere", "slice";
     torus_tetra_interior: "torus", "tetra_interior";
     #[ignore = "issue 14 part 2: tetrahedra are not clipped to the concave mesh (volumes miss the mesh's)"]
     torus_tetra_thesis: "torus", "tetra_thesis";
     torus_voronoi_uniform: "torus", "voronoi_uniform";
-    #[ignore = "issue 14 part 1: merged parts touch along an edge (edge in 4 triangles)"]
     torus_voronoi_clustered: "torus", "voronoi_clustered";
     torus_voronoi_radial: "torus", "voronoi_radial";
-    #[ignore = "issue 14 part 1: a merged part's shared face stays in the fragment as back-to-back triangles"]
     torus_voronoi_splinter: "torus", "voronoi_splinter";
-    #[ignore = "issue 14 part 1: a merged part's shared face stays in the fragment as back-to-back triangles"]
     torus_slice: "torus", "slice";
     #[ignore = "issue 14 part 1/2: a merged tetrahedron group touches itself along an edge (edge in 4 triangles)"]
     bird_tetra_interior: "bird", "tetra_interior";
     #[ignore = "issue 14 part 1/2: a merged tetrahedron group touches itself along an edge (edge in 4 triangles)"]
     bird_tetra_thesis: "bird", "tetra_thesis";
-    #[ignore = "issue 14 part 1: a merged part's shared face stays in the fragment as back-to-back triangles"]
     bird_voronoi_uniform: "bird", "voronoi_uniform";
     bird_voronoi_clustered: "bird", "voronoi_clustered";
     bird_voronoi_radial: "bird", "voronoi_radial";
-    #[ignore = "issue 14 part 1: merged parts touch along an edge (edge in 4 triangles)"]
     bird_voronoi_splinter: "bird", "voronoi_splinter";
-    #[ignore = "issue 14 part 1: a merged part's shared face stays in the fragment as back-to-back triangles"]
     bird_slice: "bird", "slice";
     #[ignore = "issue 14 part 2: tetrahedra are not clipped to the concave mesh (volumes miss the mesh's)"]
     l_tetra_interior: "l", "tetra_interior";
@@ -139,10 +128,8 @@ cases! {
     l_tetra_thesis: "l", "tetra_thesis";
     l_voronoi_uniform: "l", "voronoi_uniform";
     l_voronoi_clustered: "l", "voronoi_clustered";
-    #[ignore = "issue 14 part 1: merged parts touch along an edge (edge in 4 triangles)"]
     l_voronoi_radial: "l", "voronoi_radial";
     l_voronoi_splinter: "l", "voronoi_splinter";
-    #[ignore = "issue 14 part 1: a merged part's shared face stays in the fragment as back-to-back triangles"]
     l_slice: "l", "slice";
     #[ignore = "issue 14 part 2: tetrahedra are not clipped to the concave mesh (volumes miss the mesh's)"]
     u_tetra_interior: "u", "tetra_interior";
@@ -152,7 +139,6 @@ cases! {
     u_voronoi_clustered: "u", "voronoi_clustered";
     u_voronoi_radial: "u", "voronoi_radial";
     u_voronoi_splinter: "u", "voronoi_splinter";
-    #[ignore = "issue 14 part 1: a merged part's shared face stays in the fragment as back-to-back triangles"]
     u_slice: "u", "slice";
     #[ignore = "issue 14 part 2: tetrahedra are not clipped to the concave mesh (volumes miss the mesh's)"]
     star_tetra_interior: "star", "tetra_interior";
@@ -162,7 +148,6 @@ cases! {
     star_voronoi_clustered: "star", "voronoi_clustered";
     star_voronoi_radial: "star", "voronoi_radial";
     star_voronoi_splinter: "star", "voronoi_splinter";
-    #[ignore = "issue 14 part 1: a merged part's shared face stays in the fragment as back-to-back triangles"]
     star_slice: "star", "slice";
 }
 

@@ -395,18 +395,10 @@ const NOT_IN_DEBUG: &[(&str, &str)] = &[(
 )];
 
 /// Every corpus model is repaired into a valid solid (or refused for holding nothing
-/// with a volume), and fractures by voronoi and slice with volumes adding up to the
-/// repaired solid's (relative 1e-6). Fragments' closedness is asserted by
-/// `corpus_fragments_are_closed` (ignored: see there).
+/// with a volume), and fractures by voronoi and slice into closed 2-manifold fragments
+/// whose volumes add up to the repaired solid's (relative 1e-6).
 #[test]
-fn every_corpus_model_is_repaired_and_fractures_by_voronoi_and_slice() {
-    corpus_fractures(false);
-}
-
-#[test]
-#[ignore = "issue 14 part 1: merging small fragments leaves fragments that are not closed, \
-            even for obj/box.obj sliced (3 of 32); the lead's merge fix turns this on"]
-fn corpus_fragments_are_closed() {
+fn every_corpus_model_is_repaired_and_fractures_into_closed_fragments() {
     corpus_fractures(true);
 }
 
