@@ -201,6 +201,8 @@ def _finish(context, obj, options, interior, mats, result, fragments, progress, 
     # The last fracture's figures, for the user (and the tests): counts, volumes, time.
     coll["shatter_report"] = json.dumps(
         {k: v for k, v in result.report.items() if k != "bond_list"})
+    # What shatter repaired or dropped (holes filled, sheets dropped...), for the user.
+    coll["shatter_warnings"] = json.dumps(result.warnings)
     matrix = obj.matrix_world.copy()
     det = abs(matrix.to_3x3().determinant())
     width = len(str(max(expected - 1, 0)))

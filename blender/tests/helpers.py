@@ -115,6 +115,14 @@ def suzanne(closed=True):
     return _place(obj)
 
 
+def plane():
+    """A flat square: an open sheet that encloses nothing."""
+    bpy.ops.mesh.primitive_plane_add(size=2.0)
+    obj = bpy.context.active_object
+    obj.name = "Plane"
+    return _place(obj)
+
+
 def textured_cube():
     """A cube with its UV map, an image-textured material, and a bevel modifier (so the
     fractured mesh is the evaluated one, not the 8-vertex cube)."""
