@@ -74,6 +74,9 @@ def write(mesh, materials, path, name="mesh"):
     mtl_path = os.path.splitext(path)[0] + ".mtl"
     with open(mtl_path, "w") as f:
         f.write("# materials of %s, written by the Blender add-on shatter_fracture\n" % name)
+        # Faces of an empty slot: defined, so shatter does not warn about it; it maps
+        # back to an empty slot on import.
+        f.write("newmtl %s\nKd 0.8 0.8 0.8\n" % NO_MATERIAL)
         for mat, obj_name in zip(materials, names):
             if obj_name is None:
                 continue

@@ -174,6 +174,7 @@ def fracture_object(context, obj, options, progress: Optional[Callable] = None):
                 # Name the object, not the temporary file shatter was given.
                 raise ShatterError(str(e).replace(
                     mesh_path, "%s (with its modifiers applied)" % obj.name))
+            result.warnings = [w.replace(mesh_path, obj.name) for w in result.warnings]
             if not os.path.isfile(out_path):
                 raise ShatterError("shatter reported success but wrote no fragments")
             progress(0.5, "importing %d fragments" % result.report["fragments"])
