@@ -110,6 +110,9 @@ fn bench_stress_reports_the_20000_bond_graph_and_skips_it_when_settled() {
     // instead of skipping a settled island.
     assert_eq!(json["cold"]["converged"], false);
     assert!(json["settled"]["iterations"].as_f64().unwrap() > 0.0);
+    assert_eq!(json["preconditioner"], "multigrid");
     shatter(dir.path(), &["bench", "stress", "--runs", "0"]).bad_input(&["--runs"]);
+    shatter(dir.path(), &["bench", "stress", "--preconditioner", "ilu"])
+        .bad_input(&["--preconditioner", "multigrid, block-jacobi"]);
     shatter(dir.path(), &["bench", "stress", "--tolerance", "2"]).bad_input(&["--tolerance"]);
 }

@@ -6,7 +6,7 @@
 
 use clap::Args;
 use shatter_geom::DVec3;
-use shatter_sim::stress::{BondGraph, SolverSettings, StressSolver};
+use shatter_sim::stress::{BondGraph, Preconditioner, SolverSettings, StressSolver};
 use shatter_sim::testing::box_grid_fracture;
 use std::time::Instant;
 
@@ -25,6 +25,9 @@ pub struct BenchStressArgs {
     /// Relative residual at which a solve has converged.
     #[arg(long, default_value_t = SolverSettings::default().tolerance)]
     pub tolerance: f64,
+    /// The conjugate gradients' preconditioner: multigrid or block-jacobi.
+    #[arg(long, default_value_t = SolverSettings::default().preconditioner)]
+    pub preconditioner: Preconditioner,
     /// Print one JSON object.
     #[arg(long)]
     pub json: bool,
@@ -52,6 +55,8 @@ pub struct BenchStressReport {
     pub bonds: usize,
     /// Runs averaged.
     pub runs: usize,
+    /// The preconditioner used.
+    pub preconditioner: String,
     /// Solve from rest (zero warm start) to the tolerance.
     pub cold: Timing,
     /// A solve with nothing changed: the island is settled and skipped.
@@ -130,6 +135,7 @@ pub fn run(args: &BenchStressArgs, ctx: &Context) -> Result<BenchStressReport, C
         let settings = SolverSettings {
             max_iterations: args.max_iterations,
             tolerance: args.tolerance,
+            preconditioner: args.preconditioner,
             ..SolverSettings::default()
         };
         let mut solver = StressSolver::new(&graph, settings);
@@ -147,6 +153,7 @@ pub fn run(args: &BenchStressArgs, ctx: &Context) -> Result<BenchStressReport, C
         nodes: graph.nodes().len(),
         bonds,
         runs: args.runs,
+        preconditioner: args.preconditioner.to_string(),
         cold,
         settled,
         hit,
@@ -159,8 +166,8 @@ pub fn run(args: &BenchStressArgs, ctx: &Context) -> Result<BenchStressReport, C
         println!("{json}");
     } else {
         println!(
-            "stress solver, {} nodes, {} bonds, mean of {} runs, one core",
-            report.nodes, report.bonds, report.runs
+            "stress solver ({}), {} nodes, {} bonds, mean of {} runs, one core",
+            report.preconditioner, report.nodes, report.bonds, report.runs
         );
         for (name, t) in [
             ("cold solve", report.cold),

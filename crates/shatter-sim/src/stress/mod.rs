@@ -29,8 +29,12 @@
 //! # Ok::<(), shatter_sim::SimError>(())
 //! ```
 
+mod block;
 mod graph;
 mod limits;
+mod multigrid;
+#[cfg(test)]
+mod multigrid_tests;
 mod solver;
 mod spring;
 #[cfg(test)]
@@ -38,7 +42,7 @@ mod tests;
 
 pub use graph::{BondGraph, GraphBond, Island, Node};
 pub use limits::{BondStress, Failure, StressLimits};
-pub use solver::{SolveReport, SolverSettings, StressSolver};
+pub use solver::{Preconditioner, SolveReport, SolverSettings, StressSolver};
 
 impl BondGraph {
     /// The graph of a fracture: node masses `volume × density`, the bonds' faces, and the

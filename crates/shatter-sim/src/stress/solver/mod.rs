@@ -7,8 +7,9 @@
 //! springs `E·I/L`, `G·J/L` (`I = A²/12`, `J = A²/6`, a square face) on `θ_b − θ_a`.
 //! Anchored nodes do not move. Loads (gravity `m·g` at every node, plus this step's
 //! dynamic forces) are balanced by the bond forces: `K·x = f`, solved per anchored island
-//! with the conjugate-gradient method and a 3×3 block-Jacobi preconditioner, warm-started
-//! from the last solution. This is the minimum-energy (weighted least-squares) way the
+//! with the conjugate-gradient method, preconditioned by an aggregation multigrid (see
+//! `stress/multigrid.rs`; a 3×3 block-Jacobi preconditioner is the alternative),
+//! warm-started from the last solution. This is the minimum-energy (weighted least-squares) way the
 //! loads flow down to the anchors; force and moment balance hold at every node, so a
 //! cantilever's root carries its weight as shear and its moment as tension on top and
 //! compression below. The stiffness scale `E` cancels out of the stresses; only the
@@ -25,6 +26,9 @@ use glam::{DMat3, DVec3};
 
 use crate::stress::graph::BondGraph;
 use crate::stress::limits::{BondStress, Failure, StressLimits};
+use crate::stress::multigrid::Multigrid;
+
+mod cg;
 use crate::stress::spring::{Spring, invert, outer, skew};
 
 /// Nominal Young's modulus (Pa); it cancels out of the stresses.
@@ -40,6 +44,55 @@ pub struct SolverSettings {
     pub max_iterations: usize,
     /// Shear over normal stiffness, `G/E`.
     pub shear_ratio: f64,
+    /// How the conjugate gradients are preconditioned.
+    pub preconditioner: Preconditioner,
+}
+
+/// The preconditioner of the stress solver's conjugate gradients.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Preconditioner {
+    /// Rigid-group aggregation multigrid, one V-cycle (see `stress/multigrid.rs`): a few
+    /// dozen iterations where block Jacobi needs thousands.
+    #[default]
+    Multigrid,
+    /// The inverse of each node's 3×3 displacement and rotation blocks.
+    BlockJacobi,
+}
+
+impl Preconditioner {
+    /// Every preconditioner.
+    pub const ALL: [Preconditioner; 2] = [Preconditioner::Multigrid, Preconditioner::BlockJacobi];
+
+    /// Its name: `multigrid`, `block-jacobi`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Preconditioner::Multigrid => "multigrid",
+            Preconditioner::BlockJacobi => "block-jacobi",
+        }
+    }
+}
+
+impl std::fmt::Display for Preconditioner {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Preconditioner {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Preconditioner::ALL
+            .into_iter()
+            .find(|p| p.name() == s)
+            .ok_or_else(|| {
+                let names: Vec<&str> = Preconditioner::ALL.iter().map(|p| p.name()).collect();
+                format!(
+                    "unknown preconditioner `{s}`: expected one of {}",
+                    names.join(", ")
+                )
+            })
+    }
 }
 
 impl Default for SolverSettings {
@@ -48,6 +101,7 @@ impl Default for SolverSettings {
             tolerance: 1e-5,
             max_iterations: 1000,
             shear_ratio: 0.4,
+            preconditioner: Preconditioner::Multigrid,
         }
     }
 }
@@ -80,6 +134,8 @@ struct IslandState {
     dynamic: bool,
     /// Converged at its last solve.
     converged: bool,
+    /// Its multigrid preconditioner (with [`Preconditioner::Multigrid`]).
+    multigrid: Option<Multigrid>,
 }
 
 /// The stress solver of one bond graph; keeps its solution between solves.
@@ -123,6 +179,8 @@ pub struct StressSolver {
     islands: Vec<IslandState>,
     /// Per node, its anchored island (`u32::MAX`: none).
     node_island: Vec<u32>,
+    /// Per node, its index among its island's free nodes (`u32::MAX`: anchored or none).
+    local: Vec<u32>,
     gravity: DVec3,
     /// Mean bond length: torque residuals are divided by it to compare with forces.
     length_scale: f64,
@@ -147,36 +205,7 @@ impl StressSolver {
     /// [`StressSolver::solve`]).
     pub fn new(graph: &BondGraph, settings: SolverSettings) -> StressSolver {
         let nodes = graph.nodes();
-        let springs = graph
-            .bonds()
-            .iter()
-            .map(|bond| {
-                let (xa, xb) = (
-                    nodes[bond.a as usize].centroid,
-                    nodes[bond.b as usize].centroid,
-                );
-                let mut n = bond.normal.normalize_or(xb - xa).normalize_or(DVec3::Y);
-                if n.dot(xb - xa) < 0.0 {
-                    n = -n;
-                }
-                let length = (xb - xa).length().max(1e-9);
-                let area = bond.area.max(1e-6 * length * length);
-                let e = YOUNG / length;
-                let g = e * settings.shear_ratio;
-                Spring {
-                    a: bond.a,
-                    b: bond.b,
-                    ra: bond.centroid - xa,
-                    rb: bond.centroid - xb,
-                    n,
-                    kn: e * area,
-                    ks: g * area,
-                    kb: e * area * area / 12.0,
-                    kt: g * area * area / 6.0,
-                    area,
-                }
-            })
-            .collect();
+        let springs = springs(graph, &settings);
         let n = nodes.len();
         let zeros = vec![DVec3::ZERO; n];
         let lengths: f64 = graph
@@ -198,6 +227,7 @@ impl StressSolver {
             topology: None,
             islands: Vec::new(),
             node_island: vec![u32::MAX; n],
+            local: vec![u32::MAX; n],
             gravity: DVec3::ZERO,
             length_scale,
             xu: zeros.clone(),
@@ -332,6 +362,7 @@ impl StressSolver {
     fn rebuild(&mut self, graph: &BondGraph, broken: &[bool]) {
         self.islands.clear();
         self.node_island.iter_mut().for_each(|i| *i = u32::MAX);
+        self.local.iter_mut().for_each(|i| *i = u32::MAX);
         self.stress
             .iter_mut()
             .for_each(|s| *s = BondStress::default());
@@ -353,6 +384,7 @@ impl StressSolver {
                     self.xu[v as usize] = DVec3::ZERO;
                     self.xt[v as usize] = DVec3::ZERO;
                 } else {
+                    self.local[v as usize] = free.len() as u32;
                     free.push(v);
                 }
             }
@@ -371,196 +403,57 @@ impl StressSolver {
                 self.pre_u[v as usize] = invert(block_u[v as usize]);
                 self.pre_t[v as usize] = invert(block_t[v as usize]);
             }
+            let multigrid =
+                (self.settings.preconditioner == Preconditioner::Multigrid).then(|| {
+                    let springs: Vec<&Spring> = island
+                        .bonds
+                        .iter()
+                        .map(|&b| &self.springs[b as usize])
+                        .collect();
+                    Multigrid::new(&springs, &self.local, &free, &self.centroid)
+                });
             self.islands.push(IslandState {
                 free,
                 bonds: island.bonds,
+                multigrid,
                 ..IslandState::default()
             });
         }
         self.topology = Some(broken.to_vec());
     }
-
-    /// Preconditioned conjugate gradients on island `i`; returns (iterations, relative
-    /// residual, converged) and stores the bond stresses.
-    fn solve_island(&mut self, i: usize, forces: &[(u32, DVec3)]) -> (usize, f64, bool) {
-        let island = std::mem::take(&mut self.islands[i]);
-        let free = &island.free;
-        for &v in free {
-            self.fu[v as usize] = self.mass[v as usize] * self.gravity;
-        }
-        // Dynamic forces, balanced by the island's inertia (inertia relief): each free node
-        // also takes `−m·a` for the island's mean acceleration `a = ΣF / Σm`, so a short
-        // hit stresses the material around it rather than being carried to the anchors.
-        let mut dynamic = Vec::new();
-        for &(v, f) in forces {
-            if self.node_island.get(v as usize) == Some(&(i as u32)) && !self.anchored[v as usize] {
-                self.fu[v as usize] += f;
-                dynamic.push((v, f));
-            }
-        }
-        if !dynamic.is_empty() {
-            self.relieve(free, &dynamic);
-        }
-        let norm_f = free
-            .iter()
-            .map(|&v| self.fu[v as usize].length_squared())
-            .sum::<f64>()
-            .sqrt();
-        // r = f − K·x.
-        self.apply(&island, Operand::X);
-        for &v in free {
-            let v = v as usize;
-            self.ru[v] = self.fu[v] - self.qu[v];
-            self.rt[v] = -self.qt[v];
-        }
-        let target = self.settings.tolerance * norm_f;
-        let mut residual = self.norm_r(free);
-        let mut iterations = 0;
-        if residual > target {
-            let mut rz = self.precondition_into_p(free);
-            while iterations < self.settings.max_iterations {
-                iterations += 1;
-                self.apply(&island, Operand::P);
-                let pq: f64 = free
-                    .iter()
-                    .map(|&v| {
-                        let v = v as usize;
-                        self.pu[v].dot(self.qu[v]) + self.pt[v].dot(self.qt[v])
-                    })
-                    .sum();
-                if !(pq > 0.0 && pq.is_finite()) {
-                    break;
-                }
-                let alpha = rz / pq;
-                for &v in free {
-                    let v = v as usize;
-                    self.xu[v] += alpha * self.pu[v];
-                    self.xt[v] += alpha * self.pt[v];
-                    self.ru[v] -= alpha * self.qu[v];
-                    self.rt[v] -= alpha * self.qt[v];
-                }
-                residual = self.norm_r(free);
-                if residual <= target {
-                    break;
-                }
-                // z = P·r, β = (r·z)/(r·z)_old, p = z + β·p.
-                let mut rz_new = 0.0;
-                for &v in free {
-                    let v = v as usize;
-                    let zu = self.pre_u[v] * self.ru[v];
-                    let zt = self.pre_t[v] * self.rt[v];
-                    rz_new += zu.dot(self.ru[v]) + zt.dot(self.rt[v]);
-                    self.qu[v] = zu;
-                    self.qt[v] = zt;
-                }
-                let beta = rz_new / rz;
-                rz = rz_new;
-                for &v in free {
-                    let v = v as usize;
-                    self.pu[v] = self.qu[v] + beta * self.pu[v];
-                    self.pt[v] = self.qt[v] + beta * self.pt[v];
-                }
-            }
-        }
-        for &b in &island.bonds {
-            let s = &self.springs[b as usize];
-            let (f, m) = s.load(&self.xu, &self.xt);
-            self.stress[b as usize] = s.stress(f, m);
-        }
-        let relative = if norm_f > 0.0 { residual / norm_f } else { 0.0 };
-        let converged = residual <= target;
-        self.islands[i] = island;
-        (iterations, relative, converged)
-    }
-
-    /// Inertia relief: adds `−m·(a + α × (x − c))` to every free node, the d'Alembert
-    /// forces of the island's rigid acceleration under the dynamic forces, so they have
-    /// no net force or moment left for the anchors.
-    fn relieve(&mut self, free: &[u32], dynamic: &[(u32, DVec3)]) {
-        let mass: f64 = free.iter().map(|&v| self.mass[v as usize]).sum();
-        if mass <= 0.0 {
-            return;
-        }
-        let c = free
-            .iter()
-            .map(|&v| self.mass[v as usize] * self.centroid[v as usize])
-            .sum::<DVec3>()
-            / mass;
-        let (mut force, mut torque) = (DVec3::ZERO, DVec3::ZERO);
-        for &(v, f) in dynamic {
-            force += f;
-            torque += (self.centroid[v as usize] - c).cross(f);
-        }
-        // Point-mass inertia about c: Σ m (|r|² I − r rᵀ).
-        let mut inertia = DMat3::ZERO;
-        for &v in free {
-            let r = self.centroid[v as usize] - c;
-            let m = self.mass[v as usize];
-            inertia += (DMat3::from_diagonal(DVec3::splat(r.length_squared())) - outer(r, r)) * m;
-        }
-        let a = force / mass;
-        let alpha = invert(inertia) * torque;
-        for &v in free {
-            let r = self.centroid[v as usize] - c;
-            self.fu[v as usize] -= self.mass[v as usize] * (a + alpha.cross(r));
-        }
-    }
-
-    /// `p = P·r` on the free nodes; returns `r·p`.
-    fn precondition_into_p(&mut self, free: &[u32]) -> f64 {
-        let mut rz = 0.0;
-        for &v in free {
-            let v = v as usize;
-            self.pu[v] = self.pre_u[v] * self.ru[v];
-            self.pt[v] = self.pre_t[v] * self.rt[v];
-            rz += self.pu[v].dot(self.ru[v]) + self.pt[v].dot(self.rt[v]);
-        }
-        rz
-    }
-
-    /// `|r|` with torques divided by the length scale.
-    fn norm_r(&self, free: &[u32]) -> f64 {
-        let w = 1.0 / (self.length_scale * self.length_scale);
-        free.iter()
-            .map(|&v| {
-                let v = v as usize;
-                self.ru[v].length_squared() + self.rt[v].length_squared() * w
-            })
-            .sum::<f64>()
-            .sqrt()
-    }
-
-    /// `q = K·(x or p)` over the island (anchored entries of the operand are zero).
-    fn apply(&mut self, island: &IslandState, operand: Operand) {
-        for &b in &island.bonds {
-            let s = &self.springs[b as usize];
-            self.qu[s.a as usize] = DVec3::ZERO;
-            self.qt[s.a as usize] = DVec3::ZERO;
-            self.qu[s.b as usize] = DVec3::ZERO;
-            self.qt[s.b as usize] = DVec3::ZERO;
-        }
-        for &v in &island.free {
-            self.qu[v as usize] = DVec3::ZERO;
-            self.qt[v as usize] = DVec3::ZERO;
-        }
-        let (u, t) = match operand {
-            Operand::X => (&self.xu, &self.xt),
-            Operand::P => (&self.pu, &self.pt),
-        };
-        for &b in &island.bonds {
-            let s = &self.springs[b as usize];
-            let (f, m) = s.load(u, t);
-            let (a, bb) = (s.a as usize, s.b as usize);
-            self.qu[bb] += f;
-            self.qt[bb] += s.rb.cross(f) + m;
-            self.qu[a] -= f;
-            self.qt[a] -= s.ra.cross(f) + m;
-        }
-    }
 }
 
-#[derive(Clone, Copy)]
-enum Operand {
-    X,
-    P,
+/// The springs of `graph`'s bonds (see the module's doc).
+pub(super) fn springs(graph: &BondGraph, settings: &SolverSettings) -> Vec<Spring> {
+    let nodes = graph.nodes();
+    graph
+        .bonds()
+        .iter()
+        .map(|bond| {
+            let (xa, xb) = (
+                nodes[bond.a as usize].centroid,
+                nodes[bond.b as usize].centroid,
+            );
+            let mut n = bond.normal.normalize_or(xb - xa).normalize_or(DVec3::Y);
+            if n.dot(xb - xa) < 0.0 {
+                n = -n;
+            }
+            let length = (xb - xa).length().max(1e-9);
+            let area = bond.area.max(1e-6 * length * length);
+            let e = YOUNG / length;
+            let g = e * settings.shear_ratio;
+            Spring {
+                a: bond.a,
+                b: bond.b,
+                ra: bond.centroid - xa,
+                rb: bond.centroid - xb,
+                n,
+                kn: e * area,
+                ks: g * area,
+                kb: e * area * area / 12.0,
+                kt: g * area * area / 6.0,
+                area,
+            }
+        })
+        .collect()
 }

@@ -1,0 +1,187 @@
+//! 6×6 blocks of the stiffness matrix: a node's displacement `u` and small rotation `θ`
+//! as two 3-vectors, the block as four 3×3 matrices, and the dense Cholesky factor the
+//! multigrid's coarsest level is solved with.
+
+use glam::{DMat3, DVec3};
+
+use crate::stress::spring::{Spring, invert, outer, skew};
+
+/// A 6×6 block `[[uu, ut], [tu, tt]]` acting on `(u, θ)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Block6 {
+    pub uu: DMat3,
+    pub ut: DMat3,
+    pub tu: DMat3,
+    pub tt: DMat3,
+}
+
+impl Block6 {
+    pub const ZERO: Block6 = Block6 {
+        uu: DMat3::ZERO,
+        ut: DMat3::ZERO,
+        tu: DMat3::ZERO,
+        tt: DMat3::ZERO,
+    };
+
+    /// `(u, θ) ↦ (uu·u + ut·θ, tu·u + tt·θ)`.
+    #[inline]
+    pub fn apply(&self, u: DVec3, t: DVec3) -> (DVec3, DVec3) {
+        (self.uu * u + self.ut * t, self.tu * u + self.tt * t)
+    }
+
+    pub fn mul(&self, o: &Block6) -> Block6 {
+        Block6 {
+            uu: self.uu * o.uu + self.ut * o.tu,
+            ut: self.uu * o.ut + self.ut * o.tt,
+            tu: self.tu * o.uu + self.tt * o.tu,
+            tt: self.tu * o.ut + self.tt * o.tt,
+        }
+    }
+
+    pub fn transpose(&self) -> Block6 {
+        Block6 {
+            uu: self.uu.transpose(),
+            ut: self.tu.transpose(),
+            tu: self.ut.transpose(),
+            tt: self.tt.transpose(),
+        }
+    }
+
+    pub fn add(&mut self, o: &Block6) {
+        self.uu += o.uu;
+        self.ut += o.ut;
+        self.tu += o.tu;
+        self.tt += o.tt;
+    }
+
+    fn neg(&self) -> Block6 {
+        Block6 {
+            uu: -self.uu,
+            ut: -self.ut,
+            tu: -self.tu,
+            tt: -self.tt,
+        }
+    }
+
+    /// The inverse of a symmetric positive block (by its Schur complement; a singular
+    /// part falls back to its diagonal, as [`invert`] does).
+    pub fn inverse(&self) -> Block6 {
+        let ai = invert(self.uu);
+        let s = self.tt - self.tu * ai * self.ut;
+        let si = invert(s);
+        let aib = ai * self.ut;
+        let cai = self.tu * ai;
+        Block6 {
+            uu: ai + aib * si * cai,
+            ut: -(aib * si),
+            tu: -(si * cai),
+            tt: si,
+        }
+    }
+
+    /// `P(r)`: a coarse node's rigid motion `(U, Θ)` seen at a point `r` from its
+    /// reference point, `(U + Θ × r, Θ)`.
+    pub fn rigid(r: DVec3) -> Block6 {
+        Block6 {
+            uu: DMat3::IDENTITY,
+            ut: -skew(r),
+            tu: DMat3::ZERO,
+            tt: DMat3::IDENTITY,
+        }
+    }
+
+    /// The stiffness blocks `(K_aa, K_ab, K_bb)` of one bond's springs (`K_ba = K_abᵀ`):
+    /// the relative motion at the face is `δ = J_a·x_a + J_b·x_b` with
+    /// `J = ±[I, −skew(r)]`, and the rotations' `θ_b − θ_a`.
+    pub fn of_spring(s: &Spring) -> (Block6, Block6, Block6) {
+        let nn = outer(s.n, s.n);
+        let k = DMat3::from_diagonal(DVec3::splat(s.ks)) + nn * (s.kn - s.ks);
+        let kr = DMat3::from_diagonal(DVec3::splat(s.kb)) + nn * (s.kt - s.kb);
+        let (sa, sb) = (skew(s.ra), skew(s.rb));
+        let block = |si: DMat3, sj: DMat3| Block6 {
+            uu: k,
+            ut: -(k * sj),
+            tu: -(si.transpose() * k),
+            tt: si.transpose() * k * sj + kr,
+        };
+        (block(sa, sa), block(sa, sb).neg(), block(sb, sb))
+    }
+}
+
+/// A dense Cholesky factor `L·Lᵀ` of a symmetric positive matrix of `6n` unknowns.
+#[derive(Debug, Clone)]
+pub(super) struct Dense {
+    n: usize,
+    l: Vec<f64>,
+}
+
+impl Dense {
+    /// Factors the matrix whose `(i, j)` 6×6 block `block(i, j)` gives (lower half read).
+    /// A pivot that is not positive (a part with no stiffness) is replaced by a tiny one.
+    pub fn factor(nodes: usize, block: impl Fn(usize, usize) -> Option<Block6>) -> Dense {
+        let n = 6 * nodes;
+        let mut a = vec![0.0; n * n];
+        for i in 0..nodes {
+            for j in 0..=i {
+                if let Some(b) = block(i, j) {
+                    let parts = [(b.uu, 0, 0), (b.ut, 0, 3), (b.tu, 3, 0), (b.tt, 3, 3)];
+                    for (m, r0, c0) in parts {
+                        let cols = m.to_cols_array_2d();
+                        for (c, col) in cols.iter().enumerate() {
+                            for (r, &v) in col.iter().enumerate() {
+                                let (row, column) = (6 * i + r0 + r, 6 * j + c0 + c);
+                                if column <= row {
+                                    a[row * n + column] = v;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let scale = (0..n).map(|i| a[i * n + i].abs()).fold(0.0, f64::max);
+        let floor = (scale * 1e-14).max(f64::MIN_POSITIVE);
+        for j in 0..n {
+            let mut d = a[j * n + j];
+            for k in 0..j {
+                d -= a[j * n + k] * a[j * n + k];
+            }
+            let d = if d > floor { d.sqrt() } else { floor.sqrt() };
+            a[j * n + j] = d;
+            for i in j + 1..n {
+                let mut v = a[i * n + j];
+                for k in 0..j {
+                    v -= a[i * n + k] * a[j * n + k];
+                }
+                a[i * n + j] = v / d;
+            }
+        }
+        Dense { n, l: a }
+    }
+
+    /// Solves in place; `x` holds `(u, θ)` per node.
+    pub fn solve(&self, x: &mut [(DVec3, DVec3)]) {
+        let n = self.n;
+        let mut v = Vec::with_capacity(n);
+        for (u, t) in x.iter() {
+            v.extend_from_slice(&[u.x, u.y, u.z, t.x, t.y, t.z]);
+        }
+        for i in 0..n {
+            let row = &self.l[i * n..i * n + i];
+            let s = v[i] - row.iter().zip(&v[..i]).map(|(l, x)| l * x).sum::<f64>();
+            v[i] = s / self.l[i * n + i];
+        }
+        for i in (0..n).rev() {
+            let s = v[i]
+                - (i + 1..n)
+                    .zip(&v[i + 1..])
+                    .map(|(k, x)| self.l[k * n + i] * x)
+                    .sum::<f64>();
+            v[i] = s / self.l[i * n + i];
+        }
+        for (i, (u, t)) in x.iter_mut().enumerate() {
+            *u = DVec3::new(v[6 * i], v[6 * i + 1], v[6 * i + 2]);
+            *t = DVec3::new(v[6 * i + 3], v[6 * i + 4], v[6 * i + 5]);
+        }
+    }
+}

@@ -1,0 +1,210 @@
+//! Tests of the multigrid preconditioner against the springs it is built from, and of
+//! the solver with it against the solver with block Jacobi.
+
+use glam::DVec3;
+
+use super::block::Block6;
+use super::multigrid::Multigrid;
+use super::solver::springs;
+use super::spring::Spring;
+use super::*;
+use crate::testing::box_grid_fracture;
+
+const G: DVec3 = DVec3::new(0.0, -9.81, 0.0);
+
+/// A wall of `nx × ny × nz` blocks, its bottom row anchored.
+fn wall(nx: u32, ny: u32, nz: u32) -> BondGraph {
+    let f = box_grid_fracture(
+        [nx, ny, nz],
+        DVec3::new(0.2 * nx as f64, 0.2 * ny as f64, 0.2 * nz as f64),
+    );
+    BondGraph::from_fracture(&f, 2400.0, |i| (i / nx).is_multiple_of(ny)).unwrap()
+}
+
+/// A reproducible pseudo-random vector (xorshift), entries in [-1, 1].
+fn noise(n: usize, seed: u64) -> Vec<(DVec3, DVec3)> {
+    let mut s = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
+    let mut next = || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    (0..n)
+        .map(|_| {
+            (
+                DVec3::new(next(), next(), next()),
+                DVec3::new(next(), next(), next()),
+            )
+        })
+        .collect()
+}
+
+fn dot(a: &[(DVec3, DVec3)], b: &[(DVec3, DVec3)]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| x.0.dot(y.0) + x.1.dot(y.1))
+        .sum()
+}
+
+struct Setup {
+    springs: Vec<Spring>,
+    local: Vec<u32>,
+    free: Vec<u32>,
+    pos: Vec<DVec3>,
+}
+
+fn setup(graph: &BondGraph) -> Setup {
+    let springs = springs(graph, &SolverSettings::default());
+    let mut local = vec![u32::MAX; graph.nodes().len()];
+    let mut free = Vec::new();
+    for (v, &anchored) in graph.anchored().iter().enumerate() {
+        if !anchored {
+            local[v] = free.len() as u32;
+            free.push(v as u32);
+        }
+    }
+    let pos = graph.nodes().iter().map(|n| n.centroid).collect();
+    Setup {
+        springs,
+        local,
+        free,
+        pos,
+    }
+}
+
+/// `K·x` on the free nodes, straight from the springs (anchored nodes at rest).
+fn springs_times(s: &Setup, x: &[(DVec3, DVec3)]) -> Vec<(DVec3, DVec3)> {
+    let n = s.pos.len();
+    let (mut u, mut t) = (vec![DVec3::ZERO; n], vec![DVec3::ZERO; n]);
+    for (i, &v) in s.free.iter().enumerate() {
+        (u[v as usize], t[v as usize]) = x[i];
+    }
+    let (mut qu, mut qt) = (vec![DVec3::ZERO; n], vec![DVec3::ZERO; n]);
+    for sp in &s.springs {
+        let (f, m) = sp.load(&u, &t);
+        let (a, b) = (sp.a as usize, sp.b as usize);
+        qu[b] += f;
+        qt[b] += sp.rb.cross(f) + m;
+        qu[a] -= f;
+        qt[a] -= sp.ra.cross(f) + m;
+    }
+    s.free
+        .iter()
+        .map(|&v| (qu[v as usize], qt[v as usize]))
+        .collect()
+}
+
+fn close(a: &[(DVec3, DVec3)], b: &[(DVec3, DVec3)], rel: f64) -> bool {
+    let scale = dot(b, b).sqrt().max(1e-300);
+    let diff: Vec<_> = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| (x.0 - y.0, x.1 - y.1))
+        .collect();
+    dot(&diff, &diff).sqrt() <= rel * scale
+}
+
+#[test]
+fn the_finest_level_is_the_springs_stiffness_and_coarse_levels_are_its_galerkin_product() {
+    let graph = wall(12, 9, 2);
+    let s = setup(&graph);
+    let refs: Vec<&Spring> = s.springs.iter().collect();
+    let mg = Multigrid::new(&refs, &s.local, &s.free, &s.pos);
+    assert!(
+        mg.depth() >= 2,
+        "a 216-block wall is coarsened ({} levels)",
+        mg.depth()
+    );
+    let x = noise(s.free.len(), 1);
+    assert!(close(&mg.times(0, &x), &springs_times(&s, &x), 1e-12));
+    // K_c·X = Pᵀ·K·(P·X) on every coarse level.
+    for l in 0..mg.depth() - 1 {
+        let xc = noise(mg.len(l + 1), 2 + l as u64);
+        let fine = mg.times(l, &mg.prolong(l, &xc));
+        assert!(
+            close(&mg.times(l + 1, &xc), &mg.restrict(l, &fine), 1e-10),
+            "level {}",
+            l + 1
+        );
+    }
+}
+
+#[test]
+fn the_v_cycle_is_symmetric_and_positive() {
+    let graph = wall(14, 10, 2);
+    let s = setup(&graph);
+    let refs: Vec<&Spring> = s.springs.iter().collect();
+    let mg = Multigrid::new(&refs, &s.local, &s.free, &s.pos);
+    for seed in 0..4 {
+        let a = noise(s.free.len(), 10 + seed);
+        let b = noise(s.free.len(), 20 + seed);
+        let (ma, mb) = (mg.apply(&a), mg.apply(&b));
+        let (ab, ba) = (dot(&ma, &b), dot(&a, &mb));
+        assert!(
+            (ab - ba).abs() <= 1e-9 * ab.abs().max(ba.abs()),
+            "{ab} vs {ba}"
+        );
+        assert!(dot(&ma, &a) > 0.0);
+    }
+}
+
+#[test]
+fn a_rigid_block_inverse_undoes_its_block() {
+    let s = &springs(&wall(2, 2, 1), &SolverSettings::default())[0];
+    let (kaa, _, _) = Block6::of_spring(s);
+    // A spring's own block is singular along the free rotation about nothing; add the
+    // diagonal so it is positive, as a node's sum of springs is.
+    let mut k = kaa;
+    k.add(&Block6 {
+        uu: glam::DMat3::from_diagonal(DVec3::splat(kaa.uu.x_axis.x)),
+        ut: glam::DMat3::ZERO,
+        tu: glam::DMat3::ZERO,
+        tt: glam::DMat3::from_diagonal(DVec3::splat(kaa.tt.x_axis.x + 1.0)),
+    });
+    let (u, t) = (DVec3::new(0.3, -1.0, 2.0), DVec3::new(-0.5, 0.25, 1.5));
+    let (fu, ft) = k.apply(u, t);
+    let (bu, bt) = k.inverse().apply(fu, ft);
+    assert!((bu - u).length() < 1e-9 && (bt - t).length() < 1e-9);
+}
+
+#[test]
+fn multigrid_and_block_jacobi_give_the_same_stresses_and_multigrid_needs_far_fewer_iterations() {
+    let graph = wall(40, 30, 2);
+    let broken = vec![false; graph.bonds().len()];
+    let solve = |preconditioner| {
+        let settings = SolverSettings {
+            preconditioner,
+            tolerance: 1e-8,
+            max_iterations: 20_000,
+            ..SolverSettings::default()
+        };
+        let mut solver = StressSolver::new(&graph, settings);
+        let report = solver.solve(&graph, &broken, G, &[]);
+        assert!(report.converged, "{preconditioner:?}: {report:?}");
+        (solver, report)
+    };
+    let (mg, mg_report) = solve(Preconditioner::Multigrid);
+    let (bj, bj_report) = solve(Preconditioner::BlockJacobi);
+    let mut worst: f64 = 0.0;
+    let peak = (0..graph.bonds().len() as u32)
+        .map(|b| bj.stress(b).compression.max(bj.stress(b).tension))
+        .fold(0.0, f64::max);
+    for b in 0..graph.bonds().len() as u32 {
+        let (x, y) = (mg.stress(b), bj.stress(b));
+        worst = worst
+            .max((x.tension - y.tension).abs())
+            .max((x.compression - y.compression).abs())
+            .max((x.shear - y.shear).abs());
+    }
+    assert!(
+        worst <= 1e-4 * peak,
+        "stresses differ by {worst:e} (peak {peak:e})"
+    );
+    assert!(
+        mg_report.iterations * 4 <= bj_report.iterations,
+        "multigrid {} iterations, block Jacobi {}",
+        mg_report.iterations,
+        bj_report.iterations
+    );
+}
