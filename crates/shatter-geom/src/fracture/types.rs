@@ -1,12 +1,13 @@
 //! The fracture result types.
 
 use glam::{DMat3, DVec3};
+use serde::{Deserialize, Serialize};
 
 use crate::TriMesh;
 use crate::model::{Corners, Material};
 
 /// One piece of a fractured object.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Fragment {
     /// Closed, outward-wound surface of the fragment, in the object's frame.
     pub mesh: TriMesh,
@@ -33,7 +34,7 @@ pub struct Fragment {
 }
 
 /// A bond between two fragments that share a face.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Bond {
     /// First fragment (index into [`Fracture::fragments`]), `a < b`.
     pub a: u32,
@@ -48,6 +49,12 @@ pub struct Bond {
 }
 
 /// A fractured object: fragments and the bond graph between them.
+///
+/// `Fracture` (with its fragments, bonds and materials) is serialisable with serde; a
+/// JSON round trip gives back an equal fracture. For a file a game loads, prefer the
+/// GLB with the `SHATTER_fracture` extension
+/// ([`write_fracture_glb`](crate::io::write_fracture_glb),
+/// [`read_fracture`](crate::io::read_fracture)), which viewers open too.
 ///
 /// ```
 /// use shatter_geom::fracture::{fracture, FractureParams, Method};
@@ -71,7 +78,7 @@ pub struct Bond {
 /// assert!(f.material.iter().zip(&f.interior).all(|(&m, &i)| (m == 1) == i));
 /// # Ok::<(), shatter_geom::fracture::FractureError>(())
 /// ```
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Fracture {
     /// The fragments.
     pub fragments: Vec<Fragment>,
