@@ -98,6 +98,47 @@ impl Fracture {
         self.fragments.iter().map(|f| f.volume).sum()
     }
 
+    /// The fragments that touch the object's lowest plane: those with a vertex within
+    /// 1e-6 of the object's height above its lowest point (`y` is up). This is the rule
+    /// `shatter-sim` applies to an `anchored` object, written as a list of fragment
+    /// indices for a pre-fractured asset's anchors.
+    ///
+    /// ```
+    /// use shatter_geom::fracture::{fracture, FractureParams, Method};
+    /// use shatter_geom::{shapes, DVec3};
+    /// // The cube cut at y = 0: only the lower half touches the ground.
+    /// let params = FractureParams {
+    ///     method: Method::Slice { pieces: 0, planes: Some(vec![(DVec3::ZERO, DVec3::Y)]) },
+    ///     seed: 0,
+    /// };
+    /// let halves = fracture(&shapes::cube(), &params)?;
+    /// let lowest = halves.lowest_fragments();
+    /// assert_eq!(lowest.len(), 1);
+    /// assert!(halves.fragments[lowest[0] as usize].centroid.y < 0.0);
+    /// # Ok::<(), shatter_geom::fracture::FractureError>(())
+    /// ```
+    pub fn lowest_fragments(&self) -> Vec<u32> {
+        let ys = |f: &Fragment| {
+            f.mesh
+                .positions
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                    (lo.min(p.y), hi.max(p.y))
+                })
+        };
+        let (lo, hi) = self
+            .fragments
+            .iter()
+            .map(ys)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (a, b)| {
+                (lo.min(a), hi.max(b))
+            });
+        let eps = 1e-6 * (hi - lo).abs().max(1e-9);
+        (0..self.fragments.len() as u32)
+            .filter(|&i| ys(&self.fragments[i as usize]).0 <= lo + eps)
+            .collect()
+    }
+
     /// The bonds of fragment `i` (either side), in bond order.
     pub fn bonds_of(&self, i: u32) -> impl Iterator<Item = &Bond> {
         self.bonds.iter().filter(move |b| b.a == i || b.b == i)
