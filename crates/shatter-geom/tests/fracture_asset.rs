@@ -514,3 +514,55 @@ fn the_written_extension_follows_the_json_schema() {
         assert!(schema::validate(&schema, "#/$defs/fragment", &broken).is_err());
     }
 }
+
+/// The extension's cost in bytes on the bird cut into 100 Voronoi cells (as
+/// `shatter fracture --shape bird --pieces 100 --out bird.glb` does): printed with
+/// `--nocapture`, and bounded (under half the plain file) so that it cannot quietly grow.
+#[test]
+fn the_extension_costs_less_than_half_the_plain_file() {
+    let model = shatter_geom::model::Model::from_mesh(shapes::bird());
+    let fr = fracture_model(&model, &voronoi(100, 0)).unwrap();
+    let asset = write(&fr, &FractureAssetMeta::default());
+    let names: Vec<String> = (0..fr.fragments.len())
+        .map(|i| format!("fragment_{i}"))
+        .collect();
+    let objects: Vec<ExportObject<'_>> = fr
+        .fragments
+        .iter()
+        .zip(&names)
+        .map(|(f, n)| {
+            ExportObject::new(n, &f.mesh)
+                .with_interior(&f.interior)
+                .with_corners(&f.corners)
+                .with_materials(&f.material)
+        })
+        .collect();
+    let mut plain = Vec::new();
+    io::write_glb_with_materials(&mut plain, &objects, &fr.materials).unwrap();
+    let (json, _) = split(&asset);
+    let ext_json = serde_json::to_vec(&json["extensions"]).unwrap().len()
+        + json["nodes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|n| serde_json::to_vec(&n["extensions"]).unwrap().len())
+            .sum::<usize>();
+    let points: usize = fr
+        .fragments
+        .iter()
+        .flat_map(|f| &f.convex_pieces)
+        .map(Vec::len)
+        .sum();
+    println!(
+        "bird voronoi 100: {} fragments, {} bonds, {points} convex-piece points; plain GLB {} bytes, with SHATTER_fracture {} bytes (+{}, +{:.1} %; extension JSON {ext_json} bytes, points {} bytes)",
+        fr.fragments.len(),
+        fr.bonds.len(),
+        plain.len(),
+        asset.len(),
+        asset.len() - plain.len(),
+        100.0 * (asset.len() - plain.len()) as f64 / plain.len() as f64,
+        12 * points,
+    );
+    assert!(asset.len() > plain.len());
+    assert!(2 * (asset.len() - plain.len()) < plain.len());
+}
