@@ -565,4 +565,28 @@ fn the_extension_costs_less_than_half_the_plain_file() {
     );
     assert!(asset.len() > plain.len());
     assert!(2 * (asset.len() - plain.len()) < plain.len());
+    let (back, _) = io::parse_fracture(&asset, "bird100.glb").unwrap();
+    assert_same(&fr, &back, "bird voronoi 100");
+}
+
+#[test]
+fn the_writer_refuses_interior_faces_it_could_not_tell_apart() {
+    // An interior triangle under a surface material: a reader could not recover the
+    // interior flags from the materials, so the writer says so instead of writing.
+    let mut fr = bird(6);
+    let f = &mut fr.fragments[0];
+    let t = f.interior.iter().position(|&i| i).unwrap();
+    f.material[t] = 0;
+    let mut glb = Vec::new();
+    let err = io::write_fracture_glb(&mut glb, &fr, &FractureAssetMeta::default()).unwrap_err();
+    assert!(err.to_string().contains("interior"), "{err}");
+    // Interior faces under two materials: refused too.
+    let mut fr = bird(6);
+    fr.materials
+        .push(shatter_geom::model::Material::named("second interior"));
+    let f = &mut fr.fragments[1];
+    let t = f.interior.iter().position(|&i| i).unwrap();
+    f.material[t] = fr.materials.len() as u32 - 1;
+    let err = io::write_fracture_glb(&mut glb, &fr, &FractureAssetMeta::default()).unwrap_err();
+    assert!(err.to_string().contains("2 materials"), "{err}");
 }
