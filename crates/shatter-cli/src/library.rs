@@ -137,13 +137,17 @@ pub fn write_mesh(
 /// Writes a fracture: one object (OBJ `o fragment_i`) or node (GLB) per fragment with
 /// its corner attributes (UVs, normals, colours), each triangle under its material of
 /// [`Fracture::materials`] (the input's, then `interior` for the cut faces). A GLB embeds
-/// the textures; an OBJ's MTL file references them, copied next to it.
+/// the textures and is a pre-fractured asset ([`write_fracture_asset`], no anchors or
+/// material); an OBJ's MTL file references them, copied next to it.
 pub fn write_fracture(
     path: &Path,
     format: MeshFormat,
     fracture: &Fracture,
     progress: &Progress,
 ) -> Result<(), CliError> {
+    if format == MeshFormat::Glb {
+        return write_fracture_asset(path, fracture, &io::FractureAssetMeta::default(), progress);
+    }
     let names: Vec<String> = (0..fracture.fragments.len())
         .map(|i| format!("fragment_{i}"))
         .collect();
@@ -163,6 +167,25 @@ pub fn write_fracture(
         })
         .collect();
     save_with(path, format, &objects, Some(&fracture.materials), progress)
+}
+
+/// Writes a fracture as a pre-fractured asset: a GLB with the `SHATTER_fracture`
+/// extension (convex pieces, mass properties, bonds, and `meta`'s anchors, material and
+/// thresholds), through a temporary file renamed into place.
+pub fn write_fracture_asset(
+    path: &Path,
+    fracture: &Fracture,
+    meta: &io::FractureAssetMeta,
+    progress: &Progress,
+) -> Result<(), CliError> {
+    output::via_temp_path(path, progress, |temp| {
+        io::save_fracture_glb(temp, fracture, meta).map_err(|e| match e {
+            io::MeshIoError::Io { source, .. } => {
+                CliError::input(format!("{}: cannot write: {source}", path.display()))
+            }
+            other => CliError::internal(format!("{}: export failed: {other}", path.display())),
+        })
+    })
 }
 
 /// Writes the objects through temporary files renamed into place (an interrupted or

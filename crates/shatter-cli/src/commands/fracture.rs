@@ -124,6 +124,9 @@ pub struct FractureArgs {
     /// an internal error (exit code 1) naming the fragment and edge.
     #[arg(long)]
     pub validate: bool,
+    /// What a .glb's SHATTER_fracture extension carries beyond the geometry.
+    #[command(flatten)]
+    pub asset: super::fracture_asset::AssetArgs,
 }
 
 /// Output format of a batch.
@@ -542,6 +545,7 @@ pub fn fracture_timed(
 
 /// Runs `shatter fracture`.
 pub fn run(args: &FractureArgs, ctx: &Context) -> Result<(), CliError> {
+    args.asset.check(args.out.as_deref(), args.is_batch())?;
     if args.is_batch() {
         return super::batch::run(args, ctx);
     }
@@ -568,7 +572,7 @@ pub fn run(args: &FractureArgs, ctx: &Context) -> Result<(), CliError> {
         eprintln!("warning: {w}");
     }
     if let Some((path, format)) = &out {
-        library::write_fracture(path, *format, &fracture, &ctx.progress)?;
+        super::fracture_asset::write(path, *format, &fracture, &args.asset, &ctx.progress)?;
     }
     let mut report = FractureReport::new(mesh, &fracture, millis, warnings);
     report.estimate = Some(estimate.into());

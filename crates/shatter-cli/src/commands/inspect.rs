@@ -23,12 +23,20 @@ pub struct InspectArgs {
 pub fn run(args: &InspectArgs) -> Result<(), CliError> {
     let loaded = library::load_model(&args.mesh)?;
     let report = io::inspect(&loaded);
+    let extension = super::fracture_asset::inspect(&args.mesh);
     if args.json {
         let mut value = serde_json::to_value(&report).internal_err("cannot encode the report")?;
         value["file"] = serde_json::json!(args.mesh.display().to_string());
+        if let Some(e) = &extension {
+            value["shatter_fracture"] =
+                serde_json::to_value(e).internal_err("cannot encode the report")?;
+        }
         println!("{value}");
     } else {
         print!("{}", text(&args.mesh.display().to_string(), &report));
+        if let Some(e) = &extension {
+            println!("{}", super::fracture_asset::text(e));
+        }
     }
     Ok(())
 }

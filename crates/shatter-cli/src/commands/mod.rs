@@ -7,6 +7,7 @@ pub mod bench_fracture;
 pub mod bench_step;
 pub mod bench_stress;
 pub mod fracture;
+pub mod fracture_asset;
 pub mod inspect;
 pub mod shape;
 pub mod simulate;

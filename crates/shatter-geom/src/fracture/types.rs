@@ -1,12 +1,13 @@
 //! The fracture result types.
 
 use glam::{DMat3, DVec3};
+use serde::{Deserialize, Serialize};
 
 use crate::TriMesh;
 use crate::model::{Corners, Material};
 
 /// One piece of a fractured object.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Fragment {
     /// Closed, outward-wound surface of the fragment, in the object's frame.
     pub mesh: TriMesh,
@@ -33,7 +34,7 @@ pub struct Fragment {
 }
 
 /// A bond between two fragments that share a face.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Bond {
     /// First fragment (index into [`Fracture::fragments`]), `a < b`.
     pub a: u32,
@@ -48,6 +49,12 @@ pub struct Bond {
 }
 
 /// A fractured object: fragments and the bond graph between them.
+///
+/// `Fracture` (with its fragments, bonds and materials) is serialisable with serde; a
+/// JSON round trip gives back an equal fracture. For a file a game loads, prefer the
+/// GLB with the `SHATTER_fracture` extension
+/// ([`write_fracture_glb`](crate::io::write_fracture_glb),
+/// [`read_fracture`](crate::io::read_fracture)), which viewers open too.
 ///
 /// ```
 /// use shatter_geom::fracture::{fracture, FractureParams, Method};
@@ -71,7 +78,7 @@ pub struct Bond {
 /// assert!(f.material.iter().zip(&f.interior).all(|(&m, &i)| (m == 1) == i));
 /// # Ok::<(), shatter_geom::fracture::FractureError>(())
 /// ```
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Fracture {
     /// The fragments.
     pub fragments: Vec<Fragment>,
@@ -89,6 +96,47 @@ impl Fracture {
     /// Sum of the fragments' volumes.
     pub fn total_volume(&self) -> f64 {
         self.fragments.iter().map(|f| f.volume).sum()
+    }
+
+    /// The fragments that touch the object's lowest plane: those with a vertex within
+    /// 1e-6 of the object's height above its lowest point (`y` is up). This is the rule
+    /// `shatter-sim` applies to an `anchored` object, written as a list of fragment
+    /// indices for a pre-fractured asset's anchors.
+    ///
+    /// ```
+    /// use shatter_geom::fracture::{fracture, FractureParams, Method};
+    /// use shatter_geom::{shapes, DVec3};
+    /// // The cube cut at y = 0: only the lower half touches the ground.
+    /// let params = FractureParams {
+    ///     method: Method::Slice { pieces: 0, planes: Some(vec![(DVec3::ZERO, DVec3::Y)]) },
+    ///     seed: 0,
+    /// };
+    /// let halves = fracture(&shapes::cube(), &params)?;
+    /// let lowest = halves.lowest_fragments();
+    /// assert_eq!(lowest.len(), 1);
+    /// assert!(halves.fragments[lowest[0] as usize].centroid.y < 0.0);
+    /// # Ok::<(), shatter_geom::fracture::FractureError>(())
+    /// ```
+    pub fn lowest_fragments(&self) -> Vec<u32> {
+        let ys = |f: &Fragment| {
+            f.mesh
+                .positions
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                    (lo.min(p.y), hi.max(p.y))
+                })
+        };
+        let (lo, hi) = self
+            .fragments
+            .iter()
+            .map(ys)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (a, b)| {
+                (lo.min(a), hi.max(b))
+            });
+        let eps = 1e-6 * (hi - lo).abs().max(1e-9);
+        (0..self.fragments.len() as u32)
+            .filter(|&i| ys(&self.fragments[i as usize]).0 <= lo + eps)
+            .collect()
     }
 
     /// The bonds of fragment `i` (either side), in bond order.

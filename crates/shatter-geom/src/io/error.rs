@@ -48,6 +48,24 @@ pub enum MeshIoError {
         /// What is wrong.
         message: String,
     },
+    /// The file is a glTF without the `SHATTER_fracture` extension (an ordinary mesh,
+    /// not a pre-fractured asset).
+    #[error(
+        "{path}: no SHATTER_fracture extension: the file is not a pre-fractured shatter asset (write one with `shatter fracture ... --out FILE.glb`)"
+    )]
+    NoFractureExtension {
+        /// The file.
+        path: PathBuf,
+    },
+    /// The file's `SHATTER_fracture` extension is malformed (a bad index, a wrong
+    /// length, a non-finite number, a bond to a missing fragment, ...).
+    #[error("{path}: malformed SHATTER_fracture extension: {message}")]
+    FractureExtension {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong, naming the node, bond or field.
+        message: String,
+    },
     /// The file holds no triangles.
     #[error("{path}: no triangles in the file{found}")]
     NoTriangles {

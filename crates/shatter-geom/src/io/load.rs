@@ -75,7 +75,22 @@ pub(crate) struct ReadContext<'a> {
     pub warnings: Vec<LoadWarning>,
 }
 
-impl ReadContext<'_> {
+impl<'a> ReadContext<'a> {
+    /// A context for the file `path`, its references resolved against its folder and
+    /// read from `files`.
+    pub fn new(path: &'a Path, files: &'a dyn FileSource) -> ReadContext<'a> {
+        let dir = match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::new(),
+        };
+        ReadContext {
+            path,
+            dir,
+            files,
+            warnings: Vec::new(),
+        }
+    }
+
     /// The path of a file referenced as `reference` (relative to the main file's folder).
     pub fn resolve(&self, reference: &Path) -> PathBuf {
         if reference.is_absolute() {
@@ -214,16 +229,7 @@ fn parse(
     path: &Path,
     files: &dyn FileSource,
 ) -> Result<LoadedModel, MeshIoError> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::new(),
-    };
-    let mut cx = ReadContext {
-        path,
-        dir,
-        files,
-        warnings: Vec::new(),
-    };
+    let mut cx = ReadContext::new(path, files);
     let model = match format {
         MeshFormat::Obj => obj::read_obj(bytes, &mut cx)?,
         MeshFormat::Stl => stl::read_stl(bytes, &mut cx)?,

@@ -15,6 +15,12 @@
 //! interior and may carry materials and corner attributes. [`GlbBuilder`] is the GLB
 //! writer's core, for writers that add nodes or animations of their own.
 //!
+//! Pre-fractured assets: [`write_fracture_glb`] / [`save_fracture_glb`] write a
+//! [`Fracture`](crate::fracture::Fracture) as a GLB with the `SHATTER_fracture`
+//! extension (convex pieces, mass properties, bonds, anchors, material; see
+//! `docs/shatter-fracture-extension.md`), and [`read_fracture`] / [`parse_fracture`]
+//! read it back.
+//!
 //! ```
 //! use shatter_geom::{io::{self, ExportObject}, shapes};
 //! let dir = std::env::temp_dir().join("shatter-doc-io");
@@ -44,7 +50,9 @@ pub use export::{
 };
 pub use files::{FileSource, FileSystem, Layered, MemoryFiles, NoFiles, shared_files};
 pub use gltf::{
-    GlbBuilder, save_glb, save_glb_with_materials, write_glb, write_glb_with_materials,
+    BreakThresholds, FRACTURE_EXTENSION, FRACTURE_EXTENSION_VERSION, FractureAssetMeta, GlbBuilder,
+    parse_fracture, read_fracture, save_fracture_glb, save_glb, save_glb_with_materials,
+    write_fracture_glb, write_glb, write_glb_with_materials,
 };
 pub use inspect::{Inspection, MaterialReport, ShellReport, inspect};
 pub use load::{

@@ -25,7 +25,7 @@ use crate::fracture::normalize::{Frame, ldexp};
 /// );
 /// assert!((mesh.signed_volume() - 1.0 / 6.0).abs() < 1e-12);
 /// ```
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TriMesh {
     /// Vertex positions.
     pub positions: Vec<DVec3>,

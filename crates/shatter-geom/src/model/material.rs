@@ -4,8 +4,10 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
+use serde::{Deserialize, Serialize};
+
 /// A material: glTF's `pbrMetallicRoughness` subset that shatter keeps.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Material {
     /// Name (from the file, or made up by the reader).
     pub name: String,
@@ -40,14 +42,14 @@ impl Material {
 }
 
 /// A texture: an image (shared between materials that use the same one).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Texture {
     /// The image.
     pub image: Arc<Image>,
 }
 
 /// The encodings of an image that shatter carries through.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum ImageFormat {
     /// PNG (`image/png`).
     Png,
@@ -74,7 +76,7 @@ impl ImageFormat {
 }
 
 /// An encoded image, kept as the file's bytes (never decoded by the geometry crate).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Image {
     /// A name for it: the file name it came from, or the glTF image's name.
     pub name: String,

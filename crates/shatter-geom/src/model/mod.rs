@@ -27,12 +27,14 @@ mod material;
 
 pub use material::{Image, ImageFormat, Material, Texture};
 
+use serde::{Deserialize, Serialize};
+
 use crate::TriMesh;
 
 /// Attributes per triangle corner: entry `t` holds the values at corners `0, 1, 2` of
 /// triangle `t` (in the triangle's winding order). `None`: the model has no such
 /// attribute.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Corners {
     /// Texture coordinates (TEXCOORD_0), glTF convention (`v` down).
     pub uv: Option<Vec<[[f32; 2]; 3]>>,
@@ -85,7 +87,7 @@ impl Corners {
 }
 
 /// A triangle mesh with per-corner attributes and materials (see the module docs).
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Model {
     /// Positions and triangles.
     pub mesh: TriMesh,
