@@ -226,17 +226,20 @@ pub(crate) fn start_fractures(
     }
 }
 
+/// What [`finish_fractures`] reads of a fracturing entity.
+type TaskItem<'a> = (
+    Entity,
+    &'a Breakable,
+    &'a mut FractureTask,
+    &'a GlobalTransform,
+    Option<&'a MeshMaterial3d<StandardMaterial>>,
+);
+
 /// Spawns the fragments of finished fractures.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn finish_fractures(
     mut commands: Commands,
-    mut tasks: Query<(
-        Entity,
-        &Breakable,
-        &mut FractureTask,
-        &GlobalTransform,
-        Option<&MeshMaterial3d<StandardMaterial>>,
-    )>,
+    mut tasks: Query<TaskItem>,
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<StandardMaterial>>,
     mut settings: ResMut<ShatterSettings>,
