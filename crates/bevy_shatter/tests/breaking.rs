@@ -9,7 +9,8 @@ use avian3d::prelude::*;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_shatter::{
-    BondBroken, Breakable, Fractured, ShatterObject, ShatterPlugin, ShatterSystems, Split,
+    BondBroken, Breakable, BreakableError, FractureFailed, Fractured, ShatterObject, ShatterPlugin,
+    ShatterSystems, Split,
 };
 use shatter_sim::FractureMethod;
 
@@ -277,3 +278,38 @@ fn two_runs_with_the_same_seed_end_in_the_same_state() {
     assert_eq!(broken_a, broken_b);
     assert_eq!(a, b, "the same seed gave different end states");
 }
+
+#[test]
+fn bad_input_is_reported_as_a_message_not_a_panic() {
+    let mut app = app();
+    app.init_resource::<Failures>().add_systems(
+        FixedUpdate,
+        |mut r: MessageReader<FractureFailed>, mut log: ResMut<Failures>| {
+            log.0.extend(r.read().map(|m| m.error.clone()));
+        },
+    );
+    // No mesh at all, and a joints-model wall (not simulated by the plugin yet).
+    app.world_mut()
+        .spawn((Transform::default(), Breakable::default()));
+    wall(
+        &mut app,
+        Breakable {
+            bond_model: shatter_sim::BondModel::Joints,
+            ..Breakable::grid([2, 1, 1])
+        },
+        0.75,
+    );
+    run(&mut app, 200);
+    let failures = &app.world().resource::<Failures>().0;
+    assert!(failures.contains(&BreakableError::NoMesh), "{failures:?}");
+    assert!(
+        failures
+            .iter()
+            .any(|e| matches!(e, BreakableError::Unsupported(_))),
+        "{failures:?}"
+    );
+    assert_eq!(app.world().resource::<Log>().fractured, 0);
+}
+
+#[derive(Resource, Default)]
+struct Failures(Vec<BreakableError>);
