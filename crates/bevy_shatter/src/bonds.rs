@@ -189,7 +189,7 @@ fn split_body(
     if parts.len() < 2 {
         return None;
     }
-    let (rb, mass, com, transform, v, w) = bodies.get(body).ok()?;
+    let (rb, _, com, transform, v, w) = bodies.get(body).ok()?;
     let was_dynamic = rb.is_dynamic();
     let c = transform.transform_point(com.0);
     let centroids: Vec<glam::DVec3> = object
@@ -198,7 +198,6 @@ fn split_body(
         .iter()
         .map(|f| f.centroid)
         .collect();
-    let _ = mass;
     let mut handles = vec![body];
     for (i, part) in parts.iter().enumerate() {
         let anchored = part.iter().any(|&f| object.anchored[f as usize]);
@@ -227,7 +226,7 @@ fn split_body(
         } else {
             RigidBody::Dynamic
         };
-        let target = if i == 0 {
+        if i == 0 {
             commands.entity(body).insert((
                 kind,
                 LinearVelocity(velocity),
@@ -253,9 +252,7 @@ fn split_body(
                 object.body_of[f as usize] = Some(new);
             }
             handles.push(new);
-            new
-        };
-        let _ = target;
+        }
     }
     Some(Split {
         object: entity,
