@@ -232,7 +232,6 @@ fn split_body(
                 LinearVelocity(velocity),
                 AngularVelocity(angular),
             ));
-            body
         } else {
             let new = commands
                 .spawn((
