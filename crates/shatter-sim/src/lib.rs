@@ -29,6 +29,7 @@
 #![cfg_attr(test, allow(clippy::unwrap_used))]
 
 pub mod bonds;
+pub mod breaking;
 pub mod error;
 pub mod material;
 pub mod object;

@@ -74,7 +74,7 @@ fn joint_force(joint: &ImpulseJoint, substep_dt: f32) -> f32 {
 pub(crate) fn break_overloaded(world: &mut PhysicsWorld, live: &mut LiveObject) -> usize {
     let params = &world.integration_parameters;
     let substep_dt = params.dt / params.num_solver_iterations.max(1) as f32;
-    let strength = live.strength;
+    let strength = live.bonds.strength;
     let mut broke = 0;
     for b in 0..live.joints.len() {
         let Some(handle) = live.joints[b] else {

@@ -6,9 +6,9 @@ use glam::{Quat, Vec3};
 use rapier3d::prelude::*;
 
 use crate::bonds::tags::{Kind, tag};
+use crate::breaking::{BondState, BreakCause, Graph};
 use crate::object::{BondModel, Prepared};
 use crate::stress::{BondGraph, SolverSettings, StressLimits, StressSolver};
-use crate::world::BreakCause;
 
 /// A breakable object's bodies, colliders, joints and bond states.
 #[derive(Debug, Clone)]
@@ -17,30 +17,18 @@ pub(crate) struct LiveObject {
     pub model: BondModel,
     /// Geometry.
     pub prepared: Arc<Prepared>,
-    /// Break force of every bond (N).
-    pub strength: f32,
     /// Per fragment, its body (`None`: no valid collider, removed or diverged).
     pub body: Vec<Option<RigidBodyHandle>>,
     /// Per fragment, its colliders.
     pub colliders: Vec<Vec<ColliderHandle>>,
-    /// Per bond, broken or not.
-    pub broken: Vec<bool>,
+    /// Per bond, broken or not and its health (the engine-free break state).
+    pub bonds: BondState,
     /// Per bond, its joint (joints model).
     pub joints: Vec<Option<ImpulseJointHandle>>,
     /// Joints to the world of anchored fragments (joints model): (fragment, joint).
     pub anchor_joints: Vec<(u32, ImpulseJointHandle)>,
-    /// Number of broken bonds.
-    pub bonds_broken: usize,
-    /// Broken bonds by cause: impact, stress, damage (see [`BreakCause::index`]).
-    pub broken_by: [usize; 3],
-    /// Per bond, its health: 1 when new, worn by hits below the break force (clusters).
-    pub health: Vec<f32>,
-    /// Health lost to a hit at the full break force (the material's wear).
-    pub wear: f32,
     /// Stress solver state (clusters objects with anchored fragments).
     pub stress: Option<Box<StressState>>,
-    /// Bumped whenever a bond breaks or a fragment loses its body.
-    pub version: u64,
 }
 
 /// The stress solver of an anchored cluster object.
@@ -54,7 +42,7 @@ pub(crate) struct StressState {
     pub limits: StressLimits,
     /// Bonds that carry nothing: broken, or touching a fragment without a body.
     pub mask: Vec<bool>,
-    /// [`LiveObject::version`] the mask was built at (`u64::MAX`: never).
+    /// [`BondState::version`](crate::breaking::BondState::version) the mask was built at (`u64::MAX`: never).
     pub mask_version: u64,
     /// Forces (object frame) waiting for the next solve: explosions between steps.
     pub pending: Vec<(u32, glam::DVec3)>,
@@ -123,18 +111,12 @@ impl LiveObject {
         LiveObject {
             model,
             prepared,
-            strength,
             body: vec![None; n],
             colliders: vec![Vec::new(); n],
-            broken: vec![false; m],
+            bonds: BondState::new(m, strength, 0.0),
             joints: vec![None; m],
             anchor_joints: Vec::new(),
-            bonds_broken: 0,
-            broken_by: [0; 3],
-            health: vec![1.0; m],
-            wear: 0.0,
             stress: None,
-            version: 0,
         }
     }
 
@@ -186,21 +168,23 @@ impl LiveObject {
 
     /// Marks bond `b` broken by `cause` (idempotent); returns whether it was intact.
     pub fn mark_broken_by(&mut self, b: usize, cause: BreakCause) -> bool {
-        if self.broken[b] {
-            return false;
+        self.bonds.mark_broken(b, cause)
+    }
+
+    /// The bond graph, for the engine-free break logic.
+    pub fn graph(&self) -> Graph<'_> {
+        Graph {
+            bonds: &self.prepared.fracture.bonds,
+            adjacency: &self.prepared.adjacency,
+            masses: &self.prepared.masses,
         }
-        self.broken[b] = true;
-        self.bonds_broken += 1;
-        self.broken_by[cause.index()] += 1;
-        self.version += 1;
-        true
     }
 
     /// Takes fragment `f`'s body away (removed debris, diverged body).
     pub fn drop_fragment(&mut self, f: usize) {
         self.body[f] = None;
         self.colliders[f].clear();
-        self.version += 1;
+        self.bonds.touch();
     }
 }
 

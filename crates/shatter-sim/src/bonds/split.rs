@@ -10,55 +10,18 @@
 
 use std::collections::BTreeMap;
 
+use crate::breaking::{inherited_velocity, launch_velocity};
+
 use glam::Vec3;
 use rapier3d::prelude::*;
 
 use crate::bonds::live::LiveObject;
 use crate::bonds::tags::{Kind, tag};
 
-/// Union-find with path halving.
-struct UnionFind(Vec<u32>);
-
-impl UnionFind {
-    fn find(&mut self, mut i: u32) -> u32 {
-        while self.0[i as usize] != i {
-            let p = self.0[self.0[i as usize] as usize];
-            self.0[i as usize] = p;
-            i = p;
-        }
-        i
-    }
-
-    fn union(&mut self, a: u32, b: u32) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        if ra != rb {
-            // The smaller root wins, so roots are deterministic.
-            let (lo, hi) = if ra < rb { (ra, rb) } else { (rb, ra) };
-            self.0[hi as usize] = lo;
-        }
-    }
-}
-
 /// The connected components (fragment lists, ascending) of the fragments on `body`,
 /// ordered by their smallest fragment.
 pub(crate) fn components(live: &LiveObject, body: RigidBodyHandle) -> Vec<Vec<u32>> {
-    let n = live.body.len();
-    let mut uf = UnionFind((0..n as u32).collect());
-    for (b, bond) in live.prepared.fracture.bonds.iter().enumerate() {
-        if live.broken[b] {
-            continue;
-        }
-        if live.body[bond.a as usize] == Some(body) && live.body[bond.b as usize] == Some(body) {
-            uf.union(bond.a, bond.b);
-        }
-    }
-    let mut groups: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
-    for f in 0..n as u32 {
-        if live.body[f as usize] == Some(body) {
-            groups.entry(uf.find(f)).or_default().push(f);
-        }
-    }
-    groups.into_values().collect()
+    crate::breaking::components(&live.graph(), &live.bonds, &live.body, body)
 }
 
 /// World centre of mass of a body from its local mass properties (valid right after
@@ -123,16 +86,10 @@ pub(crate) fn split(
         }
         if was_dynamic {
             let ci = world_com(rb);
-            rb.set_linvel(v + w.cross(ci - c), true);
+            rb.set_linvel(inherited_velocity(v, w, c, ci), true);
             rb.set_angvel(w, true);
         } else {
-            let (mut j, mut m_other) = (Vec3::ZERO, 0.0f32);
-            for (ji, mi) in part.iter().filter_map(|f| impulses.get(f)) {
-                j += *ji;
-                m_other = m_other.max(*mi);
-            }
-            let m = rb.mass() + m_other;
-            let v0 = if m > 0.0 { j / m } else { Vec3::ZERO };
+            let v0 = launch_velocity(impulses, part, rb.mass());
             rb.set_linvel(v0, true);
             rb.set_angvel(Vec3::ZERO, true);
         }

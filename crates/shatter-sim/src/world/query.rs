@@ -96,7 +96,7 @@ impl World {
 
     /// Per bond of object `id`: broken or not.
     pub fn bond_states(&self, id: ObjectId) -> Option<Vec<bool>> {
-        Some(self.objects.get(&id)?.live.as_ref()?.broken.clone())
+        Some(self.objects.get(&id)?.live.as_ref()?.bonds.broken.clone())
     }
 
     /// The bond model object `id` uses.
@@ -180,10 +180,10 @@ impl World {
         match live.model {
             BondModel::Joints => joints::break_bonds(&mut self.physics, live, bonds),
             BondModel::Clusters => {
-                let strength = live.strength;
+                let strength = live.bonds.strength;
                 let mut loads = Loads::default();
                 for &b in bonds {
-                    if (b as usize) < live.broken.len() {
+                    if (b as usize) < live.bonds.broken.len() {
                         loads.bonds.insert(b, strength * 2.0 + 1.0);
                     }
                 }
@@ -220,7 +220,7 @@ impl World {
                     None => h.write_u32(u32::MAX),
                 }
             }
-            for &b in &live.broken {
+            for &b in &live.bonds.broken {
                 h.write_u32(u32::from(b));
             }
         }

@@ -108,38 +108,4 @@ pub enum SimEvent {
     },
 }
 
-/// Why a bond broke.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum BreakCause {
-    /// A load over the break force: a contact, an explosion, an explicit break, or a
-    /// joint's force.
-    Impact,
-    /// The stress solver: gravity and the step's loads put a stress over the material's
-    /// compression, tension or shear limit on the bond.
-    Stress,
-    /// Hits below the break force wore the bond's health down to 0.
-    Damage,
-}
-
-impl BreakCause {
-    /// All causes, in counter order.
-    pub const ALL: [BreakCause; 3] = [BreakCause::Impact, BreakCause::Stress, BreakCause::Damage];
-
-    /// Index into per-cause counters.
-    pub fn index(self) -> usize {
-        match self {
-            BreakCause::Impact => 0,
-            BreakCause::Stress => 1,
-            BreakCause::Damage => 2,
-        }
-    }
-
-    /// `impact`, `stress` or `damage`.
-    pub fn name(self) -> &'static str {
-        match self {
-            BreakCause::Impact => "impact",
-            BreakCause::Stress => "stress",
-            BreakCause::Damage => "damage",
-        }
-    }
-}
+pub use crate::breaking::BreakCause;

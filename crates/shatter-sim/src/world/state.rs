@@ -183,7 +183,7 @@ impl World {
         let mut live =
             LiveObject::empty(model, record.prepared.clone(), spec.effective_break_force());
         if model == BondModel::Clusters {
-            live.wear = spec.material.wear;
+            live.bonds.wear = spec.material.wear;
             live.stress = StressState::new(&record.prepared, spec.material.limits()).map(Box::new);
         }
         let pose = object_pose(spec.position, spec.rotation);
@@ -208,7 +208,7 @@ impl World {
         let Some(live) = self.objects.get_mut(&id).and_then(|r| r.live.take()) else {
             return;
         };
-        for (r, n) in self.retired.iter_mut().zip(live.broken_by) {
+        for (r, n) in self.retired.iter_mut().zip(live.bonds.broken_by) {
             *r += n;
         }
         let mut bodies: Vec<RigidBodyHandle> = live.body.iter().flatten().copied().collect();
@@ -378,7 +378,7 @@ impl World {
             bonds_total += record.prepared.fracture.bonds.len();
             if let Some(live) = &record.live {
                 fragments += live.alive_fragments();
-                for (t, n) in by.iter_mut().zip(live.broken_by) {
+                for (t, n) in by.iter_mut().zip(live.bonds.broken_by) {
                     *t += n;
                 }
             }

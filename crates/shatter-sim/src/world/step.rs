@@ -111,7 +111,7 @@ impl World {
                 let Some(h) = *body else { continue };
                 let loose = live.prepared.adjacency[f]
                     .iter()
-                    .all(|&b| live.broken[b as usize])
+                    .all(|&b| live.bonds.broken[b as usize])
                     && !live.anchor_joints.iter().any(|(a, _)| *a as usize == f);
                 if loose && !self.debris.contains(&(id.0, h)) {
                     self.debris.push_back((id.0, h));
@@ -239,7 +239,7 @@ impl World {
             let Some(live) = &record.live else { continue };
             let seen = self.reported.entry(id.0).or_insert([0; 3]);
             for cause in BreakCause::ALL {
-                let (now, before) = (live.broken_by[cause.index()], seen[cause.index()]);
+                let (now, before) = (live.bonds.broken_by[cause.index()], seen[cause.index()]);
                 if now > before {
                     self.events.push(SimEvent::BondsBroken {
                         object: id.0,
@@ -248,7 +248,7 @@ impl World {
                     });
                 }
             }
-            *seen = live.broken_by;
+            *seen = live.bonds.broken_by;
         }
     }
 

@@ -51,14 +51,14 @@ impl World {
             let Some(live) = record.live.as_mut() else {
                 continue;
             };
-            let version = live.version;
+            let version = live.bonds.version;
             let Some(state) = live.stress.as_mut() else {
                 continue;
             };
             let to_local = record.spec.rotation.as_dquat().inverse();
             if state.mask_version != version {
                 for (b, bond) in live.prepared.fracture.bonds.iter().enumerate() {
-                    state.mask[b] = live.broken[b]
+                    state.mask[b] = live.bonds.broken[b]
                         || live.body[bond.a as usize].is_none()
                         || live.body[bond.b as usize].is_none();
                 }

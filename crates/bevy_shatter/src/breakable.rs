@@ -1,0 +1,291 @@
+//! The [`Breakable`] component and the background fracture of its mesh.
+//!
+//! TODO(asset loader, issue 15 part 4): a pre-fractured GLB carrying the
+//! `SHATTER_fracture` glTF extension will be loaded by an `AssetLoader` into a
+//! `Fracture` asset; a `Breakable` pointing at such an asset skips [`start_fractures`]
+//! and goes straight to [`crate::spawn::spawn_fragments`] with the loaded fracture.
+
+use std::sync::Arc;
+
+use bevy::prelude::*;
+use bevy::tasks::{AsyncComputeTaskPool, Task, block_on, poll_once};
+use shatter_geom::fracture::{self as geom, Fracture};
+use shatter_sim::{BondModel, FractureMethod, Material, Pattern};
+
+use crate::{FractureFailed, Fractured, ShatterSettings, convert, spawn};
+
+/// Marks an entity with a `Mesh3d` and a `Transform` as breakable. At spawn its mesh is
+/// fractured on a background task; then the mesh is removed from the entity and its
+/// fragments are spawned as rigid bodies (see the crate docs).
+///
+/// ```
+/// use bevy_shatter::Breakable;
+/// use shatter_sim::{FractureMethod, Material};
+///
+/// let glass = Breakable {
+///     material: Material::preset("glass").expect("a preset"),
+///     method: FractureMethod::Voronoi,
+///     pieces: 30,
+///     ..Breakable::default()
+/// };
+/// assert_eq!(glass.seed, 1);
+/// ```
+#[derive(Component, Debug, Clone, PartialEq)]
+pub struct Breakable {
+    /// Density, friction, restitution, break force (`strength`) and wear.
+    pub material: Material,
+    /// How the mesh is cut.
+    pub method: FractureMethod,
+    /// Voronoi seed pattern.
+    pub pattern: Pattern,
+    /// Number of pieces (Voronoi seeds, slice planes; tetra: random interior points).
+    pub pieces: u32,
+    /// Cells along x, y, z of the [`FractureMethod::Grid`] method (cuts the mesh's bounding
+    /// box into bricks).
+    pub grid: [u32; 3],
+    /// Random seed: the same seed gives the same fragments.
+    pub seed: u64,
+    /// Bond model. Only [`BondModel::Clusters`] is simulated by the plugin so far;
+    /// [`BondModel::Joints`] is refused with [`BreakableError::Unsupported`].
+    pub bond_model: BondModel,
+    /// Break force of each bond (N); `None` uses `material.strength`.
+    pub break_force: Option<f32>,
+    /// Whether the object is fixed to the world (a static body until bonds break).
+    pub anchored: bool,
+}
+
+impl Default for Breakable {
+    fn default() -> Self {
+        let material = Material::preset("concrete").unwrap_or(Material {
+            density: 2400.0,
+            friction: 0.6,
+            restitution: 0.1,
+            strength: 20_000.0,
+            method: FractureMethod::Voronoi,
+            pattern: Pattern::Uniform,
+            compression: 30e6,
+            tension: 3e6,
+            shear: 4e6,
+            wear: 0.0,
+        });
+        Breakable {
+            material,
+            method: FractureMethod::Voronoi,
+            pattern: Pattern::Uniform,
+            pieces: 20,
+            grid: [4, 4, 1],
+            seed: 1,
+            bond_model: BondModel::Clusters,
+            break_force: None,
+            anchored: false,
+        }
+    }
+}
+
+impl Breakable {
+    /// Bricks: the mesh's bounding box cut into `cells` boxes.
+    ///
+    /// ```
+    /// let wall = bevy_shatter::Breakable::grid([6, 3, 1]);
+    /// assert_eq!(wall.grid, [6, 3, 1]);
+    /// ```
+    pub fn grid(cells: [u32; 3]) -> Breakable {
+        Breakable {
+            method: FractureMethod::Grid,
+            grid: cells,
+            ..Breakable::default()
+        }
+    }
+
+    /// The break force of each bond (N).
+    pub fn strength(&self) -> f32 {
+        self.break_force.unwrap_or(self.material.strength)
+    }
+
+    /// Fractures `mesh` (the entity's mesh, in its local frame) with these parameters.
+    ///
+    /// ```
+    /// use bevy::prelude::*;
+    /// let mesh = Mesh::from(Cuboid::new(2.0, 1.0, 1.0));
+    /// let fracture = bevy_shatter::Breakable::grid([2, 1, 1]).fracture(&mesh)?;
+    /// assert_eq!(fracture.fragments.len(), 2);
+    /// assert_eq!(fracture.bonds.len(), 1);
+    /// # Ok::<(), bevy_shatter::BreakableError>(())
+    /// ```
+    pub fn fracture(&self, mesh: &Mesh) -> Result<Fracture, BreakableError> {
+        if self.bond_model != BondModel::Clusters {
+            return Err(BreakableError::Unsupported(format!(
+                "bond model `{}` (only `clusters` so far)",
+                self.bond_model.name()
+            )));
+        }
+        let s = self.strength();
+        if !(s.is_finite() && s > 0.0) {
+            return Err(BreakableError::Fracture(format!(
+                "break force must be > 0, got {s}"
+            )));
+        }
+        let mesh = convert::tri_mesh(mesh).ok_or(BreakableError::NotATriangleMesh)?;
+        if self.method == FractureMethod::Grid {
+            let (lo, hi) = mesh.positions.iter().fold(
+                (glam::DVec3::splat(f64::MAX), glam::DVec3::splat(f64::MIN)),
+                |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+            );
+            let mut f = shatter_sim::testing::box_grid_fracture(self.grid, hi - lo);
+            let offset = (lo + hi) / 2.0;
+            for frag in &mut f.fragments {
+                for p in &mut frag.mesh.positions {
+                    *p += offset;
+                }
+                for piece in &mut frag.convex_pieces {
+                    for p in piece {
+                        *p += offset;
+                    }
+                }
+                frag.centroid += offset;
+            }
+            for b in &mut f.bonds {
+                b.centroid += offset;
+            }
+            return Ok(f);
+        }
+        let method = match self.method {
+            FractureMethod::Voronoi => geom::Method::Voronoi {
+                pieces: self.pieces as usize,
+                pattern: match self.pattern {
+                    Pattern::Uniform => geom::Pattern::Uniform,
+                    Pattern::Clustered => geom::Pattern::Clustered,
+                    Pattern::Radial => geom::Pattern::Radial,
+                    Pattern::Splinter => geom::Pattern::Splinter,
+                },
+                impact: None,
+                seeds: None,
+            },
+            FractureMethod::Slice => geom::Method::Slice {
+                pieces: self.pieces as usize,
+                planes: None,
+            },
+            _ => geom::Method::Tetra {
+                random_vertices: self.pieces as usize,
+                skip: 0,
+                center: false,
+                placement: geom::Placement::Interior,
+            },
+        };
+        geom::fracture(
+            &mesh,
+            &geom::FractureParams {
+                method,
+                seed: self.seed,
+            },
+        )
+        .map_err(|e| BreakableError::Fracture(e.to_string()))
+    }
+}
+
+/// Why a [`Breakable`] could not be fractured.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BreakableError {
+    /// The entity has no `Mesh3d`, or its mesh asset is gone.
+    #[error("the breakable entity has no mesh")]
+    NoMesh,
+    /// The mesh is not a triangle list with positions.
+    #[error("the mesh is not a triangle list with positions")]
+    NotATriangleMesh,
+    /// The fracture refused the mesh or the parameters.
+    #[error("fracture failed: {0}")]
+    Fracture(String),
+    /// A setting the plugin does not simulate yet.
+    #[error("not supported by bevy_shatter yet: {0}")]
+    Unsupported(String),
+}
+
+/// A fracture running on the async compute pool.
+#[derive(Component)]
+pub(crate) struct FractureTask(Task<Result<Fracture, BreakableError>>);
+
+/// Starts a background fracture for each new [`Breakable`].
+pub(crate) fn start_fractures(
+    mut commands: Commands,
+    new: Query<(Entity, &Breakable, Option<&Mesh3d>), Without<FractureTask>>,
+    meshes: Res<Assets<Mesh>>,
+    mut failed: MessageWriter<FractureFailed>,
+) {
+    for (entity, breakable, mesh) in &new {
+        let Some(mesh) = mesh.and_then(|m| meshes.get(&m.0)) else {
+            failed.write(FractureFailed {
+                object: entity,
+                error: BreakableError::NoMesh,
+            });
+            commands.entity(entity).remove::<Breakable>();
+            continue;
+        };
+        let (breakable, mesh) = (breakable.clone(), mesh.clone());
+        let task = AsyncComputeTaskPool::get().spawn(async move { breakable.fracture(&mesh) });
+        commands.entity(entity).insert(FractureTask(task));
+    }
+}
+
+/// What [`finish_fractures`] reads of a fracturing entity.
+type TaskItem<'a> = (
+    Entity,
+    &'a Breakable,
+    &'a mut FractureTask,
+    &'a GlobalTransform,
+    Option<&'a MeshMaterial3d<StandardMaterial>>,
+);
+
+/// Spawns the fragments of finished fractures.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn finish_fractures(
+    mut commands: Commands,
+    mut tasks: Query<TaskItem>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+    mut settings: ResMut<ShatterSettings>,
+    mut fractured: MessageWriter<Fractured>,
+    mut failed: MessageWriter<FractureFailed>,
+) {
+    for (entity, breakable, mut task, transform, material) in &mut tasks {
+        let Some(result) = block_on(poll_once(&mut task.0)) else {
+            continue;
+        };
+        commands
+            .entity(entity)
+            .remove::<(FractureTask, Breakable)>();
+        let fracture = match result {
+            Ok(f) => Arc::new(f),
+            Err(error) => {
+                warn!("bevy_shatter: {entity}: {error}");
+                failed.write(FractureFailed {
+                    object: entity,
+                    error,
+                });
+                continue;
+            }
+        };
+        let interior = settings
+            .interior_material
+            .get_or_insert_with(|| materials.add(Color::srgb(0.55, 0.55, 0.55)))
+            .clone();
+        let surface = material
+            .map(|m| m.0.clone())
+            .unwrap_or_else(|| interior.clone());
+        let message = Fractured {
+            object: entity,
+            fragments: fracture.fragments.len(),
+            bonds: fracture.bonds.len(),
+        };
+        spawn::spawn_fragments(
+            &mut commands,
+            &mut meshes,
+            entity,
+            breakable,
+            fracture,
+            transform.compute_transform(),
+            surface,
+            interior,
+        );
+        fractured.write(message);
+    }
+}

@@ -1,0 +1,164 @@
+//! Destruction for Bevy games: mark an entity [`Breakable`], and it is fractured by
+//! shatter on a background task and replaced by fragment entities that are ordinary
+//! [avian3d](avian3d) rigid bodies. Fragments held by intact bonds form one body (a
+//! compound of their convex pieces, the cluster bond model); impacts load the bonds
+//! through shatter-sim's engine-free break logic ([`shatter_sim::breaking`]), and a body
+//! whose bonds break splits into islands. The game's own colliders hit the debris and
+//! the debris hits them.
+//!
+//! The plugin adds no camera, light or UI, and not the physics engine either: add
+//! avian's `PhysicsPlugins` yourself.
+//!
+//! ```no_run
+//! use avian3d::prelude::*;
+//! use bevy::prelude::*;
+//! use bevy_shatter::{Breakable, ShatterPlugin};
+//!
+//! fn setup(
+//!     mut commands: Commands,
+//!     mut meshes: ResMut<Assets<Mesh>>,
+//!     mut materials: ResMut<Assets<StandardMaterial>>,
+//! ) {
+//!     commands.spawn((
+//!         Mesh3d(meshes.add(Cuboid::new(3.0, 1.5, 0.3))),
+//!         MeshMaterial3d(materials.add(Color::srgb(0.7, 0.3, 0.2))),
+//!         Transform::from_xyz(0.0, 0.75, 0.0),
+//!         Breakable::grid([6, 3, 1]),
+//!     ));
+//! }
+//!
+//! App::new()
+//!     .add_plugins((DefaultPlugins, PhysicsPlugins::default(), ShatterPlugin::default()))
+//!     .add_systems(Startup, setup)
+//!     .run();
+//! ```
+//!
+//! Loading a pre-fractured GLB (the `SHATTER_fracture` glTF extension) is not here yet:
+//! see the TODO in [`breakable`].
+
+mod bonds;
+pub mod breakable;
+mod convert;
+mod spawn;
+
+use bevy::prelude::*;
+
+pub use bonds::{ShatterBody, ShatterObject};
+pub use breakable::{Breakable, BreakableError};
+pub use spawn::Fragment;
+
+/// The plugin: fractures [`Breakable`] entities and breaks their bonds.
+///
+/// Its systems run in `FixedUpdate`, in [`ShatterSystems`]; they read the contacts of the
+/// last physics step (avian runs in `FixedPostUpdate` by default).
+#[derive(Debug, Clone)]
+pub struct ShatterPlugin {
+    /// The material for the cut (interior) faces of fragments; `None`: a grey
+    /// `StandardMaterial` made by the plugin.
+    pub interior_material: Option<Handle<StandardMaterial>>,
+    /// Scales every contact force before it loads the bonds (1: as measured).
+    pub contact_scale: f32,
+    /// Fragments whose speed exceeds this (m/s) or whose state is not finite are removed
+    /// (a `Diverged` outcome is logged).
+    pub max_speed: f32,
+}
+
+impl Default for ShatterPlugin {
+    fn default() -> Self {
+        ShatterPlugin {
+            interior_material: None,
+            contact_scale: 1.0,
+            max_speed: 500.0,
+        }
+    }
+}
+
+/// The plugin's settings, as a resource (a copy of [`ShatterPlugin`]'s fields).
+#[derive(Resource, Debug, Clone)]
+pub struct ShatterSettings {
+    /// See [`ShatterPlugin::interior_material`] (filled in at startup).
+    pub interior_material: Option<Handle<StandardMaterial>>,
+    /// See [`ShatterPlugin::contact_scale`].
+    pub contact_scale: f32,
+    /// See [`ShatterPlugin::max_speed`].
+    pub max_speed: f32,
+}
+
+/// The plugin's system sets in `FixedUpdate`, in this order.
+#[derive(SystemSet, Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ShatterSystems {
+    /// Starts fracture tasks for new [`Breakable`]s and spawns the fragments of finished
+    /// ones.
+    Fracture,
+    /// Loads bonds from the last step's contacts, breaks them and splits bodies.
+    Break,
+}
+
+/// A [`Breakable`] entity was fractured and replaced by fragments.
+#[derive(Message, Debug, Clone, PartialEq)]
+pub struct Fractured {
+    /// The entity (it stays, as the object's record: [`ShatterObject`]).
+    pub object: Entity,
+    /// Number of fragments.
+    pub fragments: usize,
+    /// Number of bonds.
+    pub bonds: usize,
+}
+
+/// A bond of an object broke.
+#[derive(Message, Debug, Clone, PartialEq)]
+pub struct BondBroken {
+    /// The object.
+    pub object: Entity,
+    /// What broke (bond index, fragments, cause, load).
+    pub bond: shatter_sim::breaking::BondBroken,
+}
+
+/// A body of an object split into islands of intact bonds.
+#[derive(Message, Debug, Clone, PartialEq)]
+pub struct Split {
+    /// The object.
+    pub object: Entity,
+    /// The island bodies: the first is the old body, the others are new.
+    pub bodies: Vec<Entity>,
+    /// Each island's fragments.
+    pub parts: Vec<Vec<u32>>,
+}
+
+/// A [`Breakable`] could not be fractured (bad mesh, bad parameters).
+#[derive(Message, Debug, Clone, PartialEq)]
+pub struct FractureFailed {
+    /// The entity (it keeps its mesh; its [`Breakable`] is removed).
+    pub object: Entity,
+    /// Why.
+    pub error: BreakableError,
+}
+
+impl Plugin for ShatterPlugin {
+    fn build(&self, app: &mut App) {
+        app.insert_resource(ShatterSettings {
+            interior_material: self.interior_material.clone(),
+            contact_scale: self.contact_scale,
+            max_speed: self.max_speed,
+        })
+        .add_message::<Fractured>()
+        .add_message::<BondBroken>()
+        .add_message::<Split>()
+        .add_message::<FractureFailed>()
+        .configure_sets(
+            FixedUpdate,
+            (ShatterSystems::Fracture, ShatterSystems::Break).chain(),
+        )
+        .add_systems(
+            FixedUpdate,
+            (
+                (breakable::start_fractures, breakable::finish_fractures)
+                    .chain()
+                    .in_set(ShatterSystems::Fracture),
+                (bonds::break_bonds, bonds::guard)
+                    .chain()
+                    .in_set(ShatterSystems::Break),
+            ),
+        );
+    }
+}
