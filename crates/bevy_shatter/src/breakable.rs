@@ -1,9 +1,5 @@
-//! The [`Breakable`] component and the background fracture of its mesh.
-//!
-//! TODO(asset loader, issue 15 part 4): a pre-fractured GLB carrying the
-//! `SHATTER_fracture` glTF extension will be loaded by an `AssetLoader` into a
-//! `Fracture` asset; a `Breakable` pointing at such an asset skips [`start_fractures`]
-//! and goes straight to [`crate::spawn::spawn_fragments`] with the loaded fracture.
+//! The [`Breakable`] component and the background fracture of its mesh, or the
+//! pre-fractured asset it names ([`crate::FractureAsset`]).
 
 use std::sync::Arc;
 
@@ -12,6 +8,7 @@ use bevy::tasks::{AsyncComputeTaskPool, Task, block_on, poll_once};
 use shatter_geom::fracture::{self as geom, Fracture};
 use shatter_sim::{BondModel, FractureMethod, Material, Pattern};
 
+use crate::asset::FractureAsset;
 use crate::{FractureFailed, Fractured, ShatterSettings, convert, spawn};
 
 /// Marks an entity with a `Mesh3d` and a `Transform` as breakable. At spawn its mesh is
@@ -50,8 +47,13 @@ pub struct Breakable {
     pub bond_model: BondModel,
     /// Break force of each bond (N); `None` uses `material.strength`.
     pub break_force: Option<f32>,
-    /// Whether the object is fixed to the world (a static body until bonds break).
+    /// Whether the object is fixed to the world (a static body until bonds break) by its
+    /// bottom fragments. A pre-fractured asset with anchors is held by those, whatever
+    /// this says.
     pub anchored: bool,
+    /// A pre-fractured object (a GLB with the `SHATTER_fracture` extension): its
+    /// fragments and bonds are used as they are, and the entity needs no mesh.
+    pub prefractured: Option<Handle<FractureAsset>>,
 }
 
 impl Default for Breakable {
@@ -78,6 +80,7 @@ impl Default for Breakable {
             bond_model: BondModel::Clusters,
             break_force: None,
             anchored: false,
+            prefractured: None,
         }
     }
 }
@@ -93,6 +96,16 @@ impl Breakable {
         Breakable {
             method: FractureMethod::Grid,
             grid: cells,
+            ..Breakable::default()
+        }
+    }
+
+    /// A pre-fractured object: the fracture is `asset`'s (see [`crate::FractureAsset`]).
+    /// Its anchors, if it has any, hold it; its break force is the file's when it has
+    /// thresholds and `break_force` is not set.
+    pub fn prefractured(asset: Handle<FractureAsset>) -> Breakable {
+        Breakable {
+            prefractured: Some(asset),
             ..Breakable::default()
         }
     }
@@ -198,20 +211,48 @@ pub enum BreakableError {
     /// A setting the plugin does not simulate yet.
     #[error("not supported by bevy_shatter yet: {0}")]
     Unsupported(String),
+    /// The pre-fractured asset failed to load (the loader's message).
+    #[error("the pre-fractured asset failed to load: {0}")]
+    Asset(String),
+}
+
+/// What a fracture task gives: the fracture, and the asset's anchors and break force.
+pub(crate) struct Outcome {
+    pub fracture: Arc<Fracture>,
+    pub anchors: Option<Vec<u32>>,
+    pub strength: Option<f32>,
 }
 
 /// A fracture running on the async compute pool.
 #[derive(Component)]
-pub(crate) struct FractureTask(Task<Result<Fracture, BreakableError>>);
+pub(crate) struct FractureTask(Task<Result<Outcome, BreakableError>>);
 
 /// Starts a background fracture for each new [`Breakable`].
 pub(crate) fn start_fractures(
     mut commands: Commands,
     new: Query<(Entity, &Breakable, Option<&Mesh3d>), Without<FractureTask>>,
     meshes: Res<Assets<Mesh>>,
+    (assets, server): (Res<Assets<FractureAsset>>, Res<AssetServer>),
     mut failed: MessageWriter<FractureFailed>,
 ) {
     for (entity, breakable, mesh) in &new {
+        if let Some(handle) = &breakable.prefractured {
+            let outcome = match assets.get(handle) {
+                Some(asset) => Ok(Outcome {
+                    fracture: asset.fracture.clone(),
+                    anchors: (!asset.meta.anchors.is_empty()).then(|| asset.meta.anchors.clone()),
+                    strength: asset.meta.thresholds.map(|t| t.strength as f32),
+                }),
+                None => match server.load_state(handle) {
+                    bevy::asset::LoadState::Failed(e) => Err(BreakableError::Asset(e.to_string())),
+                    // Not loaded yet: look again next step.
+                    _ => continue,
+                },
+            };
+            let task = AsyncComputeTaskPool::get().spawn(async move { outcome });
+            commands.entity(entity).insert(FractureTask(task));
+            continue;
+        }
         let Some(mesh) = mesh.and_then(|m| meshes.get(&m.0)) else {
             failed.write(FractureFailed {
                 object: entity,
@@ -221,7 +262,13 @@ pub(crate) fn start_fractures(
             continue;
         };
         let (breakable, mesh) = (breakable.clone(), mesh.clone());
-        let task = AsyncComputeTaskPool::get().spawn(async move { breakable.fracture(&mesh) });
+        let task = AsyncComputeTaskPool::get().spawn(async move {
+            breakable.fracture(&mesh).map(|f| Outcome {
+                fracture: Arc::new(f),
+                anchors: None,
+                strength: None,
+            })
+        });
         commands.entity(entity).insert(FractureTask(task));
     }
 }
@@ -253,8 +300,8 @@ pub(crate) fn finish_fractures(
         commands
             .entity(entity)
             .remove::<(FractureTask, Breakable)>();
-        let fracture = match result {
-            Ok(f) => Arc::new(f),
+        let outcome = match result {
+            Ok(outcome) => outcome,
             Err(error) => {
                 warn!("bevy_shatter: {entity}: {error}");
                 failed.write(FractureFailed {
@@ -273,15 +320,15 @@ pub(crate) fn finish_fractures(
             .unwrap_or_else(|| interior.clone());
         let message = Fractured {
             object: entity,
-            fragments: fracture.fragments.len(),
-            bonds: fracture.bonds.len(),
+            fragments: outcome.fracture.fragments.len(),
+            bonds: outcome.fracture.bonds.len(),
         };
         spawn::spawn_fragments(
             &mut commands,
             &mut meshes,
             entity,
             breakable,
-            fracture,
+            outcome,
             transform.compute_transform(),
             surface,
             interior,

@@ -33,9 +33,10 @@
 //!     .run();
 //! ```
 //!
-//! Loading a pre-fractured GLB (the `SHATTER_fracture` glTF extension) is not here yet:
-//! see the TODO in [`breakable`].
+//! A game can also fracture offline (`shatter fracture wall.obj --out wall.glb
+//! --anchor lowest`) and load the result: see [`FractureAsset`].
 
+pub mod asset;
 mod bonds;
 pub mod breakable;
 mod convert;
@@ -43,6 +44,7 @@ mod spawn;
 
 use bevy::prelude::*;
 
+pub use asset::{FractureAsset, FractureAssetError, FractureAssetLoader};
 pub use bonds::{ShatterBody, ShatterObject};
 pub use breakable::{Breakable, BreakableError};
 pub use spawn::Fragment;
@@ -141,6 +143,8 @@ impl Plugin for ShatterPlugin {
             contact_scale: self.contact_scale,
             max_speed: self.max_speed,
         })
+        .init_asset::<asset::FractureAsset>()
+        .init_asset_loader::<asset::FractureAssetLoader>()
         .add_message::<Fractured>()
         .add_message::<BondBroken>()
         .add_message::<Split>()

@@ -1,14 +1,13 @@
 //! Fragment entities: one rigid body holding every fragment (a compound collider, the
 //! cluster bond model), each fragment a child entity with its meshes and collider.
 
-use std::sync::Arc;
-
 use avian3d::prelude::*;
 use bevy::prelude::*;
 use shatter_geom::fracture::Fracture;
 use shatter_sim::breaking::{BondState, Graph};
 
 use crate::bonds::{ShatterBody, ShatterObject};
+use crate::breakable::Outcome;
 use crate::{Breakable, convert};
 
 /// A fragment of a fractured object: a child of its body entity, with the surface mesh,
@@ -49,12 +48,13 @@ pub(crate) fn spawn_fragments(
     meshes: &mut Assets<Mesh>,
     object: Entity,
     breakable: &Breakable,
-    fracture: Arc<Fracture>,
+    outcome: Outcome,
     pose: Transform,
     surface: Handle<StandardMaterial>,
     interior: Handle<StandardMaterial>,
 ) {
     let m = &breakable.material;
+    let fracture = outcome.fracture;
     let n = fracture.fragments.len();
     let masses: Vec<f32> = fracture
         .fragments
@@ -62,8 +62,24 @@ pub(crate) fn spawn_fragments(
         .map(|f| (f.volume * f64::from(m.density)) as f32)
         .collect();
     let adjacency = Graph::adjacency_of(&fracture.bonds, n);
-    let anchored = anchored_fragments(&fracture, breakable.anchored);
-    let body_type = if breakable.anchored {
+    let anchored = match &outcome.anchors {
+        // A pre-fractured asset's own anchors (`shatter fracture --anchor`) hold it.
+        Some(list) => {
+            let mut flags = vec![false; n];
+            for &f in list {
+                if let Some(flag) = flags.get_mut(f as usize) {
+                    *flag = true;
+                }
+            }
+            flags
+        }
+        None => anchored_fragments(&fracture, breakable.anchored),
+    };
+    let strength = breakable
+        .break_force
+        .or(outcome.strength)
+        .unwrap_or(breakable.material.strength);
+    let body_type = if anchored.iter().any(|&a| a) {
         RigidBody::Static
     } else {
         RigidBody::Dynamic
@@ -120,7 +136,7 @@ pub(crate) fn spawn_fragments(
             fracture,
             masses,
             adjacency,
-            state: BondState::new(bonds, breakable.strength(), m.wear),
+            state: BondState::new(bonds, strength, m.wear),
             body_of,
             fragments: entities,
             anchored,
