@@ -61,8 +61,6 @@ fn thesis_case_cube_with_500_random_points() {
 
 #[test]
 fn every_shape_every_placement() {
-    // Known defect, issue 14 part 2 (open): see accept_known_tetra_defects.
-    accept_known_tetra_defects();
     let mut meshes: Vec<(String, TriMesh)> = builtin::NAMES
         .iter()
         .map(|n| (n.to_string(), builtin::by_name(n).unwrap()))
@@ -98,8 +96,6 @@ fn every_shape_every_placement() {
 
 #[test]
 fn concave_meshes_keep_exactly_the_inside_tetrahedra() {
-    // Known defect, issue 14 part 2 (open): see accept_known_tetra_defects.
-    accept_known_tetra_defects();
     // With no random points and no centre the points are the welded surface vertices,
     // so the kept tetrahedra can be recomputed here.
     for (name, mesh) in [

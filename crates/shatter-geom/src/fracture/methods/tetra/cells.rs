@@ -21,9 +21,12 @@ use crate::util::{FastMap, UnionFind, bounds};
 /// Distance (relative to the mesh's size) the surface must keep from a tetrahedron's
 /// faces for it to count as not entering the tetrahedron; nearer, it is clipped.
 const CROSS_MARGIN: f64 = 1e-12;
-/// Pieces of at most this fraction of the mesh's volume are dropped (flat remains of a
-/// tetrahedron the surface grazes, which as fragments would have back-to-back faces).
+/// Tetrahedra of at most this fraction of the mesh's volume are flat: left out, their
+/// faces made one plane (as fragments they would have back-to-back faces).
 pub(super) const FLAT_FRACTION: f64 = 1e-13;
+/// Clipped pieces of at most this fraction of the mesh's volume are dropped (what is
+/// left where a cut grazes the surface: zero volume up to rounding).
+const PIECE_FLAT_FRACTION: f64 = 1e-16;
 
 /// The pieces of a tetrahedralization clipped to a mesh.
 pub(super) struct Cells {
@@ -81,14 +84,6 @@ pub(super) fn cells(
             })
             .collect()
     };
-    let fast = |t: usize| {
-        side[t] == Side::Inside
-            && (all_inside
-                || del
-                    .neighbors(t)
-                    .iter()
-                    .all(|&n| n != NO_NEIGHBOR && side[n as usize] == Side::Inside))
-    };
     let min_volume = FLAT_FRACTION * mesh_volume;
     // A flat tetrahedron (four coplanar points, as on a torus's cross-section) is left
     // out, and its faces are made one plane: the caps its neighbours have on either side
@@ -96,13 +91,34 @@ pub(super) fn cells(
     let flat: Vec<bool> = (0..nt)
         .map(|t| tet_volume(corners(t)) <= min_volume)
         .collect();
+    // A flat tetrahedron on the points' hull (coplanar points on a flat part of it)
+    // makes its neighbours' faces there outer surface.
     let mut same_plane = UnionFind::new(4 * nt);
+    let mut hull_faces: Vec<usize> = Vec::new();
     for t in (0..nt).filter(|&t| flat[t]) {
         let first = face_plane(del, pts, t, 0).tag as usize;
-        for f in 1..4 {
-            same_plane.union(first, face_plane(del, pts, t, f).tag as usize);
+        for f in 0..4 {
+            let tag = face_plane(del, pts, t, f).tag as usize;
+            same_plane.union(first, tag);
+            if del.neighbors(t)[f] == NO_NEIGHBOR {
+                hull_faces.push(tag);
+            }
         }
     }
+    let mut on_hull = vec![false; 4 * nt];
+    for tag in hull_faces {
+        let r = same_plane.find(tag);
+        on_hull[r] = true;
+    }
+    // Kept as it is: inside, and so is every neighbour, none of them flat (a flat one
+    // can lie on the surface, which then bounds this one).
+    let fast = |t: usize| {
+        side[t] == Side::Inside
+            && (all_inside
+                || del.neighbors(t).iter().all(|&n| {
+                    n != NO_NEIGHBOR && side[n as usize] == Side::Inside && !flat[n as usize]
+                }))
+    };
     let per_tet: Vec<Vec<(Piece, bool)>> = (0..nt)
         .into_par_iter()
         .with_max_len(1)
@@ -137,12 +153,13 @@ pub(super) fn cells(
     let any_flat = flat.iter().any(|&f| f);
     for (t, list) in per_tet.into_iter().enumerate() {
         for (mut p, whole) in list {
-            if p.volume() <= min_volume {
+            if p.volume() <= PIECE_FLAT_FRACTION * mesh_volume {
                 continue;
             }
             if any_flat {
                 for tag in p.tags.iter_mut().filter(|t| !is_surface(**t)) {
-                    *tag = same_plane.find(*tag as usize) as u64;
+                    let r = same_plane.find(*tag as usize);
+                    *tag = if on_hull[r] { SURFACE } else { r as u64 };
                 }
             }
             out.pieces.push(p);
@@ -208,33 +225,117 @@ fn whole_piece(del: &Tetrahedralization, pts: &[DVec3], t: usize) -> Piece {
 
 /// `mesh` clipped by every plane (the convex cell they bound), as its connected parts.
 /// As for a Voronoi cell, each time the plane with the most vertices beyond it cuts.
-fn clip_cell(mesh: &Piece, mut planes: Vec<Plane>, eps: f64) -> Vec<Piece> {
-    let mut cell: Option<Piece> = None;
-    while !planes.is_empty() {
-        let current = cell.as_ref().unwrap_or(mesh);
-        let beyond = |plane: &Plane| current.pos.iter().filter(|&&p| plane.eval(p) > 0.0).count();
-        let (best, count) = planes
-            .iter()
-            .enumerate()
-            .map(|(k, plane)| (k, beyond(plane)))
-            .fold((0, 0), |acc, x| if x.1 > acc.1 { x } else { acc });
-        if count == 0 {
-            break;
+///
+/// Each cut must keep a volume between zero and what it cut (up to rounding); a cut that
+/// does not (a cap the kernel triangulated wrongly, seen on a torus's saddle) makes the
+/// cuts be tried again in the other orders, the first order whose every cut passes kept.
+pub(super) fn clip_cell(mesh: &Piece, planes: Vec<Plane>, eps: f64) -> Vec<Piece> {
+    let finish = |cell: Piece| -> Vec<Piece> {
+        let mut cell = cell;
+        cell.close_faces();
+        cell.components()
+            .into_iter()
+            .flat_map(split_at_pinched_edges)
+            .collect()
+    };
+    let good = |parts: &Vec<Piece>| parts.iter().all(is_closed);
+    let greedy = clip_in_order(mesh, planes.clone(), eps, None).map(finish);
+    if let Some(parts) = greedy.filter(good) {
+        return parts;
+    }
+    for order in permutations(planes.len()) {
+        let parts = clip_in_order(mesh, planes.clone(), eps, Some(&order)).map(finish);
+        if let Some(parts) = parts.filter(good) {
+            return parts;
         }
-        let plane = planes.swap_remove(best);
+    }
+    clip_unchecked(mesh, planes, eps)
+        .map(finish)
+        .unwrap_or_default()
+}
+
+/// The cell cut greedily (`order` `None`) or in the given order; `None` when a cut
+/// fails the volume check. An empty piece when nothing is left.
+fn clip_in_order(
+    mesh: &Piece,
+    mut planes: Vec<Plane>,
+    eps: f64,
+    order: Option<&[usize]>,
+) -> Option<Piece> {
+    let mut cell: Option<Piece> = None;
+    let mut volume = mesh.volume();
+    let tol = 1e-9 * volume.abs();
+    let fixed: Vec<Plane> = order
+        .map(|o| o.iter().map(|&k| planes[k]).collect())
+        .unwrap_or_default();
+    let mut step = 0;
+    loop {
+        let current = cell.as_ref().unwrap_or(mesh);
+        let plane = if order.is_some() {
+            if step == fixed.len() {
+                break;
+            }
+            step += 1;
+            fixed[step - 1]
+        } else {
+            if planes.is_empty() {
+                break;
+            }
+            let beyond =
+                |plane: &Plane| current.pos.iter().filter(|&&p| plane.eval(p) > 0.0).count();
+            let (best, count) = planes
+                .iter()
+                .enumerate()
+                .map(|(k, plane)| (k, beyond(plane)))
+                .fold((0, 0), |acc, x| if x.1 > acc.1 { x } else { acc });
+            if count == 0 {
+                break;
+            }
+            planes.swap_remove(best)
+        };
         if let Some(next) = clip_keeping_faces(current, &plane, eps) {
             if next.is_empty() {
-                return Vec::new();
+                return Some(Piece::default());
             }
+            let v = next.volume();
+            if v < -tol || v > volume + tol {
+                return None;
+            }
+            volume = v;
             cell = Some(next);
         }
     }
-    let mut cell = cell.unwrap_or_else(|| mesh.clone());
-    cell.close_faces();
-    cell.components()
-        .into_iter()
-        .flat_map(split_at_pinched_edges)
-        .collect()
+    Some(cell.unwrap_or_else(|| mesh.clone()))
+}
+
+/// The greedy cell without the volume check (no order passed it); `None` when empty.
+fn clip_unchecked(mesh: &Piece, planes: Vec<Plane>, eps: f64) -> Option<Piece> {
+    let mut cell = mesh.clone();
+    for plane in planes {
+        if let Some(next) = clip_keeping_faces(&cell, &plane, eps) {
+            if next.is_empty() {
+                return None;
+            }
+            cell = next;
+        }
+    }
+    Some(cell)
+}
+
+/// Every order of `0..n` (n at most 4 here), in lexicographic order.
+fn permutations(n: usize) -> Vec<Vec<usize>> {
+    if n == 0 {
+        return vec![Vec::new()];
+    }
+    let mut out = Vec::new();
+    for first in 0..n {
+        for rest in permutations(n - 1) {
+            let mut p = vec![first];
+            p.extend(rest.into_iter().map(|k| if k >= first { k + 1 } else { k }));
+            out.push(p);
+        }
+    }
+    out
 }
 
 /// A clipped piece that touches itself along an edge (the tetrahedron spans a concave
