@@ -238,6 +238,7 @@ fn fracture_local(
                 skip: *skip,
                 center: *center,
                 placement: *placement,
+                exact: !frame.is_per_axis(),
             };
             tetra(&piece, volume, &opt, eps, &mut rng, &mut warnings)?
         }

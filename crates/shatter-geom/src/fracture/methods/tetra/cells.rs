@@ -23,7 +23,7 @@ use crate::util::{FastMap, UnionFind, bounds};
 const CROSS_MARGIN: f64 = 1e-12;
 /// Tetrahedra of at most this fraction of the mesh's volume are flat: left out, their
 /// faces made one plane (as fragments they would have back-to-back faces).
-pub(super) const FLAT_FRACTION: f64 = 1e-13;
+pub(super) const FLAT_FRACTION: f64 = 1e-16;
 /// Clipped pieces of at most this fraction of the mesh's volume are dropped (what is
 /// left where a cut grazes the surface: zero volume up to rounding).
 const PIECE_FLAT_FRACTION: f64 = 1e-16;
@@ -57,6 +57,7 @@ pub(super) fn cells(
     del: &Tetrahedralization,
     pts: &[DVec3],
     eps: f64,
+    exact: bool,
 ) -> Cells {
     let nt = del.len();
     let corners = |t: usize| del.tetrahedron(t).map(|i| pts[i as usize]);
@@ -74,7 +75,7 @@ pub(super) fn cells(
             .into_par_iter()
             .map(|t| {
                 let c = corners(t);
-                if grid.enters(mesh, c, margin) {
+                if exact && grid.enters(mesh, c, margin) {
                     Side::Crossed
                 } else if tester.contains((c[0] + c[1] + c[2] + c[3]) / 4.0) {
                     Side::Inside
@@ -115,6 +116,7 @@ pub(super) fn cells(
     let fast = |t: usize| {
         side[t] == Side::Inside
             && (all_inside
+                || !exact
                 || del.neighbors(t).iter().all(|&n| {
                     n != NO_NEIGHBOR && side[n as usize] == Side::Inside && !flat[n as usize]
                 }))

@@ -30,6 +30,10 @@ pub(crate) struct TetraOptions {
     pub skip: usize,
     pub center: bool,
     pub placement: Placement,
+    /// Clip the tetrahedra to the mesh (false in a per-axis frame, where the mesh has
+    /// features far below the cut tolerance: then tetrahedra are kept whole by their
+    /// centroid, and a result that misses the volume is refused by the caller).
+    pub exact: bool,
 }
 
 /// The point set of the thesis: every `(skip + 1)`-th surface vertex, the random points,
@@ -85,7 +89,7 @@ pub(crate) fn tetra(
 ) -> Result<TetraResult, FractureError> {
     let pts = tetra_points(mesh, opt, rng);
     let del = tetrahedralize(&pts)?;
-    let cells = cells::cells(mesh, mesh_volume, &del, &pts, eps);
+    let cells = cells::cells(mesh, mesh_volume, &del, &pts, eps, opt.exact);
     let plane_of = |tag: u64| {
         let p = cells::own_plane(&del, &pts, (tag / 4) as usize, (tag % 4) as usize);
         let n = p.n.normalize_or_zero();

@@ -42,7 +42,7 @@ fn a_tetrahedron_across_the_hole_gives_two_pieces() {
     ];
     let del = tetrahedralize(&pts).unwrap();
     assert_eq!(del.len(), 1);
-    let c = cells(&mesh, volume, &del, &pts, 1e-10);
+    let c = cells(&mesh, volume, &del, &pts, 1e-10, true);
     assert_eq!(c.pieces.len(), 2, "two parts of one tetrahedron");
     assert!(c.tet.iter().all(|&t| t == 0) && c.whole.iter().all(|&w| !w));
     let tet = tet_volume([pts[0], pts[1], pts[2], pts[3]]).abs();
@@ -80,7 +80,7 @@ fn a_tetrahedron_inside_stays_whole_and_one_outside_is_dropped() {
         DVec3::new(0.5, 0.05, 0.0),
     ];
     let del = tetrahedralize(&inside).unwrap();
-    let c = cells(&mesh, volume, &del, &inside, 1e-10);
+    let c = cells(&mesh, volume, &del, &inside, 1e-10, true);
     assert_eq!(c.pieces.len(), 1);
     let p = &c.pieces[0];
     // Clipped (its faces are on the points' hull) but unchanged: four caps-or-hull
@@ -96,5 +96,9 @@ fn a_tetrahedron_inside_stays_whole_and_one_outside_is_dropped() {
     }
     let hole = inside.map(|q| q - DVec3::new(0.5, 0.0, 0.0));
     let del = tetrahedralize(&hole).unwrap();
-    assert!(cells(&mesh, volume, &del, &hole, 1e-10).pieces.is_empty());
+    assert!(
+        cells(&mesh, volume, &del, &hole, 1e-10, true)
+            .pieces
+            .is_empty()
+    );
 }
