@@ -196,10 +196,6 @@ pub fn weld(mesh: &TriMesh) -> (Vec<DVec3>, Vec<[u32; 3]>) {
 /// triangles wound opposite ways — without degenerate (repeated-vertex) triangles, and
 /// encloses a positive volume.
 pub fn assert_closed_outward(mesh: &TriMesh, what: &str) {
-    if known_tetra_defects() {
-        assert_closed_outward_by_count(mesh, what);
-        return;
-    }
     let (_, tris) = weld(mesh);
     let mut directed: HashMap<(u32, u32), usize> = HashMap::new();
     for t in &tris {
@@ -220,46 +216,6 @@ pub fn assert_closed_outward(mesh: &TriMesh, what: &str) {
             directed.get(&(b, a)).copied().unwrap_or(0),
             1,
             "{what}: edge {a}->{b} has no reverse"
-        );
-    }
-    assert!(mesh.signed_volume() > 0.0, "{what}: not outward");
-}
-
-thread_local! {
-    static KNOWN_TETRA_DEFECTS: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
-}
-
-/// Marks this test thread as checking tetra fragments, which still have a known defect
-/// (issue 14 part 2, open): a flat sliver tetrahedron merged into its group leaves two
-/// faces back to back, and groups may touch themselves along an edge. Such a thread
-/// checks closedness by counts (each edge used as often as its reverse) and skips the
-/// back-to-back check; everything else stays strict.
-pub fn accept_known_tetra_defects() {
-    KNOWN_TETRA_DEFECTS.with(|k| k.set(true));
-}
-
-fn known_tetra_defects() -> bool {
-    KNOWN_TETRA_DEFECTS.with(|k| k.get())
-}
-
-/// The weaker closedness check: every directed edge used as often as its reverse.
-fn assert_closed_outward_by_count(mesh: &TriMesh, what: &str) {
-    let (_, tris) = weld(mesh);
-    let mut directed: HashMap<(u32, u32), usize> = HashMap::new();
-    for t in &tris {
-        assert!(
-            t[0] != t[1] && t[1] != t[2] && t[0] != t[2],
-            "{what}: degenerate triangle {t:?}"
-        );
-        for k in 0..3 {
-            *directed.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
-        }
-    }
-    for (&(a, b), &n) in &directed {
-        assert_eq!(
-            directed.get(&(b, a)).copied().unwrap_or(0),
-            n,
-            "{what}: edge {a}->{b} used {n} times but not as often the other way"
         );
     }
     assert!(mesh.signed_volume() > 0.0, "{what}: not outward");
@@ -430,7 +386,7 @@ pub fn check_fracture_with(
         let ia = interior_area(f);
         let tol = 1e-6 * ia.max(d * d * 1e-6);
         assert!(
-            known_tetra_defects() || !has_back_to_back(f),
+            !has_back_to_back(f),
             "{what}: fragment {i} has interior faces back to back"
         );
         if shells(&f.mesh) > 1 {

@@ -1,5 +1,6 @@
 //! The thesis's tetra method on every built-in shape and the L-block: fragments are
-//! (groups of) Delaunay tetrahedra, closed and outward, no slivers, bonds on shared faces.
+//! (groups of) Delaunay tetrahedra clipped to the mesh, closed 2-manifolds, no slivers,
+//! bonds on shared faces.
 #![allow(clippy::unwrap_used)]
 
 #[path = "fracture_shapes.rs"]
@@ -61,8 +62,6 @@ fn thesis_case_cube_with_500_random_points() {
 
 #[test]
 fn every_shape_every_placement() {
-    // Known defect, issue 14 part 2 (open): see accept_known_tetra_defects.
-    accept_known_tetra_defects();
     let mut meshes: Vec<(String, TriMesh)> = builtin::NAMES
         .iter()
         .map(|n| (n.to_string(), builtin::by_name(n).unwrap()))
@@ -85,9 +84,8 @@ fn every_shape_every_placement() {
                     check_fracture_with(mesh, volume, &fr, 1.0, true, &what);
                     assert!(fr.total_volume() <= volume * (1.0 + 1e-9), "{what}");
                 } else if skip == 0 {
-                    // Concave: tetrahedra whose centroid is outside are gone; faces may cut
-                    // corners, the volume stays close.
-                    check_fracture_with(mesh, volume, &fr, 0.35, false, &what);
+                    // Concave: the tetrahedra clipped to the mesh fill it exactly.
+                    check_fracture(mesh, volume, &fr, 1e-9, &what);
                 } else {
                     check_fracture_with(mesh, volume, &fr, 1.0, false, &what);
                 }
@@ -97,11 +95,11 @@ fn every_shape_every_placement() {
 }
 
 #[test]
-fn concave_meshes_keep_exactly_the_inside_tetrahedra() {
-    // Known defect, issue 14 part 2 (open): see accept_known_tetra_defects.
-    accept_known_tetra_defects();
-    // With no random points and no centre the points are the welded surface vertices,
-    // so the kept tetrahedra can be recomputed here.
+fn concave_meshes_are_filled_exactly_not_their_hull() {
+    // With no random points and no centre the points are the welded surface vertices:
+    // their hull is the mesh's convex hull, and the tetrahedra clipped to the mesh fill
+    // the mesh exactly (issue 14 part 2), not the hull nor the tetrahedra whose centroid
+    // is inside.
     for (name, mesh) in [
         ("l-block", l_block()),
         ("torus", builtin::torus(0.5, 0.2, 16, 8)),
@@ -110,27 +108,11 @@ fn concave_meshes_keep_exactly_the_inside_tetrahedra() {
         let fr = fracture(&mesh, &tetra(0, 0, false, Placement::Interior)).unwrap();
         let welded = mesh.welded();
         let del = tetrahedralize(&welded.positions).unwrap();
-        let mut kept = 0.0;
-        let mut count = 0;
-        for t in del.tetrahedra() {
-            let p = t.map(|i| welded.positions[i as usize]);
-            let c = (p[0] + p[1] + p[2] + p[3]) / 4.0;
-            if welded.winding_number(c) > 0.5 {
-                kept += (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])) / 6.0;
-                count += 1;
-            }
-        }
-        assert!(count > 0);
         let total = fr.total_volume();
-        // Dropped isolated slivers are reported; they are below the sliver threshold.
-        let slack = if fr.warnings.is_empty() {
-            1e-9 * kept
-        } else {
-            SLIVER_VOLUME_FRACTION * mesh.volume() * count as f64
-        };
+        let volume = mesh.volume();
         assert!(
-            (total - kept).abs() <= slack,
-            "{name}: {total} vs kept {kept}"
+            (total - volume).abs() <= 1e-9 * volume,
+            "{name}: {total} vs mesh {volume}"
         );
         // Concavity is kept: the result is smaller than the points' hull.
         let hull: f64 = del
@@ -141,7 +123,7 @@ fn concave_meshes_keep_exactly_the_inside_tetrahedra() {
             })
             .sum();
         assert!(total < 0.99 * hull, "{name}: {total} vs hull {hull}");
-        check_fracture_with(&mesh, mesh.volume(), &fr, 0.35, false, name);
+        check_fracture(&mesh, volume, &fr, 1e-9, name);
     }
 }
 

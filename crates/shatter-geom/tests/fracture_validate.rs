@@ -1,7 +1,6 @@
 //! `Fracture::validate` over every built-in shape and the concave test shapes (L block,
 //! U, star) × every method: closed 2-manifold fragments, volumes adding up to the mesh's
-//! (relative 1e-9), a well-formed bond graph. The cases that fail today are ignored with
-//! the part of issue 14 that fixes them; the lead turns them on as the fixes land.
+//! (relative 1e-9), a well-formed bond graph.
 #![allow(clippy::unwrap_used)]
 
 #[path = "fracture_shapes.rs"]
@@ -106,43 +105,34 @@ cases! {
     sphere_voronoi_splinter: "sphere", "voronoi_splinter";
     sphere_slice: "sphere", "slice";
     torus_tetra_interior: "torus", "tetra_interior";
-    #[ignore = "issue 14 part 2: tetrahedra are not clipped to the concave mesh (volumes miss the mesh's)"]
     torus_tetra_thesis: "torus", "tetra_thesis";
     torus_voronoi_uniform: "torus", "voronoi_uniform";
     torus_voronoi_clustered: "torus", "voronoi_clustered";
     torus_voronoi_radial: "torus", "voronoi_radial";
     torus_voronoi_splinter: "torus", "voronoi_splinter";
     torus_slice: "torus", "slice";
-    #[ignore = "issue 14 part 1/2: a merged tetrahedron group touches itself along an edge (edge in 4 triangles)"]
     bird_tetra_interior: "bird", "tetra_interior";
-    #[ignore = "issue 14 part 1/2: a merged tetrahedron group touches itself along an edge (edge in 4 triangles)"]
     bird_tetra_thesis: "bird", "tetra_thesis";
     bird_voronoi_uniform: "bird", "voronoi_uniform";
     bird_voronoi_clustered: "bird", "voronoi_clustered";
     bird_voronoi_radial: "bird", "voronoi_radial";
     bird_voronoi_splinter: "bird", "voronoi_splinter";
     bird_slice: "bird", "slice";
-    #[ignore = "issue 14 part 2: tetrahedra are not clipped to the concave mesh (volumes miss the mesh's)"]
     l_tetra_interior: "l", "tetra_interior";
-    #[ignore = "issue 14 part 1/2: a merged tetrahedron group touches itself along an edge (edge in 4 triangles)"]
     l_tetra_thesis: "l", "tetra_thesis";
     l_voronoi_uniform: "l", "voronoi_uniform";
     l_voronoi_clustered: "l", "voronoi_clustered";
     l_voronoi_radial: "l", "voronoi_radial";
     l_voronoi_splinter: "l", "voronoi_splinter";
     l_slice: "l", "slice";
-    #[ignore = "issue 14 part 2: tetrahedra are not clipped to the concave mesh (volumes miss the mesh's)"]
     u_tetra_interior: "u", "tetra_interior";
-    #[ignore = "issue 14 part 2: tetrahedra are not clipped to the concave mesh (volumes miss the mesh's)"]
     u_tetra_thesis: "u", "tetra_thesis";
     u_voronoi_uniform: "u", "voronoi_uniform";
     u_voronoi_clustered: "u", "voronoi_clustered";
     u_voronoi_radial: "u", "voronoi_radial";
     u_voronoi_splinter: "u", "voronoi_splinter";
     u_slice: "u", "slice";
-    #[ignore = "issue 14 part 2: tetrahedra are not clipped to the concave mesh (volumes miss the mesh's)"]
     star_tetra_interior: "star", "tetra_interior";
-    #[ignore = "issue 14 part 2: tetrahedra are not clipped to the concave mesh (volumes miss the mesh's)"]
     star_tetra_thesis: "star", "tetra_thesis";
     star_voronoi_uniform: "star", "voronoi_uniform";
     star_voronoi_clustered: "star", "voronoi_clustered";

@@ -5,7 +5,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
-use super::attributes::{Source, attach, tags_of_flags};
+use super::attributes::{Source, attach};
 use super::bonds::merge::merge_small;
 use super::kernel::convex::convex_pieces;
 use super::kernel::{Piece, is_surface, mesh_scale};
@@ -141,13 +141,12 @@ fn fracture_tagged(
     frame.volume_to_world(volume, "the mesh's volume")?;
     frame.inertia_to_world(inertia, "the mesh's inertia tensor")?;
     let params = local_params(&frame, params)?;
-    let is_tetra = matches!(params.method, Method::Tetra { .. });
+    // Tetra with skipped surface vertices fills only the points' hull, inside the mesh.
+    let partial = matches!(params.method, Method::Tetra { skip, .. } if skip > 0);
     let (local, tags) = fracture_local(piece, warnings, &params, frame.metric(), &frame)?;
     // A cut that lost or gained volume is refused, not returned (features far below the
-    // cut tolerance, as a body squashed beside a 1e33 spike). Tetra keeps whole
-    // tetrahedra on concave meshes (issue 14 part 2), so it is checked only in a per-axis
-    // frame, where such features arise.
-    if !is_tetra || frame.is_per_axis() {
+    // cut tolerance, as a body squashed beside a 1e33 spike).
+    if !partial || frame.is_per_axis() {
         check_volume_sum(&local, volume)?;
     }
     Ok((frame.fracture_to_world(local)?, tags))
@@ -239,10 +238,9 @@ fn fracture_local(
                 skip: *skip,
                 center: *center,
                 placement: *placement,
+                exact: !frame.is_per_axis(),
             };
-            let (fragments, bonds) = tetra(&piece, volume, &opt, &mut rng, &mut warnings)?;
-            let tags = fragments.iter().map(tags_of_flags).collect();
-            (fragments, tags, bonds)
+            tetra(&piece, volume, &opt, eps, &mut rng, &mut warnings)?
         }
         Method::Voronoi {
             pieces,

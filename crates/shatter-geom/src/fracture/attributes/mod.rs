@@ -27,7 +27,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::kernel::{is_surface, source_triangle};
-use super::types::{Fracture, Fragment};
+use super::types::Fracture;
 use crate::TriMesh;
 use crate::io::{INTERIOR_COLOR, INTERIOR_MATERIAL};
 use crate::model::{Corners, Material};
@@ -249,13 +249,4 @@ impl Context<'_> {
         }
         (Corners { uv, normal, color }, material)
     }
-}
-
-/// The tags of a fragment built without the kernel (the tetra method's): its surface
-/// triangles of no known source, its interior ones each on a plane of its own.
-pub(crate) fn tags_of_flags(f: &Fragment) -> Vec<u64> {
-    f.interior
-        .iter()
-        .map(|&i| if i { OWN_PLANE } else { super::kernel::SURFACE })
-        .collect()
 }

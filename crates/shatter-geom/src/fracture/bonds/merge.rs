@@ -33,10 +33,29 @@ pub(crate) fn merge_small(
     min_volume: f64,
     eps: f64,
 ) -> (Vec<Piece>, Vec<Bond>, Merged) {
+    let (pieces, bonds, merged, _) = merge_small_with(pieces, bonds, min_volume, &[], eps);
+    (pieces, bonds, merged)
+}
+
+/// [`merge_small`], where a piece marked in `poor` (missing marks are `false`) is also
+/// small while it is alone in its group (a sliver tetrahedron of any volume); also
+/// returns each input piece's new piece.
+pub(crate) fn merge_small_with(
+    pieces: Vec<Piece>,
+    bonds: Vec<Bond>,
+    min_volume: f64,
+    poor: &[bool],
+    eps: f64,
+) -> (Vec<Piece>, Vec<Bond>, Merged, Vec<u32>) {
     let n = pieces.len();
     let mut vol: Vec<f64> = pieces.iter().map(Piece::volume).collect();
-    if vol.iter().all(|&v| v >= min_volume) {
-        return (pieces, bonds, Merged::default());
+    // Members per group (held by its root): a poor piece is small while alone.
+    let mut count: Vec<usize> = vec![1; n];
+    let small = |g: usize, vol: &[f64], count: &[usize]| {
+        vol[g] < min_volume || (count[g] == 1 && poor.get(g).copied().unwrap_or(false))
+    };
+    if (0..n).all(|i| !small(i, &vol, &count)) {
+        return (pieces, bonds, Merged::default(), (0..n as u32).collect());
     }
     let mut uf = UnionFind::new(n);
     // Each group's surface, held by its root.
@@ -50,6 +69,7 @@ pub(crate) fn merge_small(
                 uf: &mut UnionFind,
                 geometry: &mut Vec<Option<Piece>>,
                 vol: &mut Vec<f64>,
+                count: &mut Vec<usize>,
                 refused: &mut BTreeSet<(usize, usize)>|
      -> bool {
         let key = (g.min(h), g.max(h));
@@ -61,12 +81,13 @@ pub(crate) fn merge_small(
         };
         match union(&[ph, pg], eps) {
             Ok(joined) => {
-                let v = vol[g] + vol[h];
+                let (v, c) = (vol[g] + vol[h], count[g] + count[h]);
                 geometry[g] = None;
                 geometry[h] = None;
                 uf.union(g, h);
                 let r = uf.find(g);
                 vol[r] = v;
+                count[r] = c;
                 geometry[r] = Some(joined);
                 true
             }
@@ -80,7 +101,7 @@ pub(crate) fn merge_small(
         let mut changed = false;
         for &i in &order {
             let g = uf.find(i);
-            if vol[g] >= min_volume {
+            if !small(g, &vol, &count) {
                 continue;
             }
             // Total bond area from group g to each other group, largest first.
@@ -99,7 +120,15 @@ pub(crate) fn merge_small(
             let mut candidates: Vec<(usize, f64)> = area_to.into_iter().collect();
             candidates.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
             for (h, _) in candidates {
-                if join(g, h, &mut uf, &mut geometry, &mut vol, &mut refused) {
+                if join(
+                    g,
+                    h,
+                    &mut uf,
+                    &mut geometry,
+                    &mut vol,
+                    &mut count,
+                    &mut refused,
+                ) {
                     changed = true;
                     break;
                 }
@@ -116,7 +145,7 @@ pub(crate) fn merge_small(
     let mut merged = Merged::default();
     for &i in &order {
         let g = uf.find(i);
-        if vol[g] >= min_volume || geometry[g].is_none() {
+        if !small(g, &vol, &count) || geometry[g].is_none() {
             continue;
         }
         let Some(pg) = geometry[g].as_ref() else {
@@ -139,7 +168,15 @@ pub(crate) fn merge_small(
         match nearest {
             None => merged.lonely += 1,
             Some((_, h)) => {
-                if !join(g, h, &mut uf, &mut geometry, &mut vol, &mut refused) {
+                if !join(
+                    g,
+                    h,
+                    &mut uf,
+                    &mut geometry,
+                    &mut vol,
+                    &mut count,
+                    &mut refused,
+                ) {
                     merged.unjoined += 1;
                 }
             }
@@ -184,5 +221,5 @@ pub(crate) fn merge_small(
             normal: nrm.normalize_or_zero(),
         })
         .collect();
-    (out, bonds, merged)
+    (out, bonds, merged, new_id)
 }
