@@ -240,7 +240,7 @@ impl FractureArgs {
         }
         let scale = validate_scale(self.scale)?;
         let method = self.method;
-        let refuse = |flag: &str, applies_to: &str| {
+        let refuse = |flag: &str, applies_to: MethodKind| {
             CliError::input(format!(
                 "{flag} applies to --method {applies_to}, not --method {}",
                 method.name()
@@ -248,31 +248,31 @@ impl FractureArgs {
         };
         if method != MethodKind::Tetra {
             if self.random_vertices.is_some() {
-                return Err(refuse("--random-vertices", "tetra"));
+                return Err(refuse("--random-vertices", MethodKind::Tetra));
             }
             if self.skip.is_some() {
-                return Err(refuse("--skip", "tetra"));
+                return Err(refuse("--skip", MethodKind::Tetra));
             }
             if self.center {
-                return Err(refuse("--center", "tetra"));
+                return Err(refuse("--center", MethodKind::Tetra));
             }
             if self.placement.is_some() {
-                return Err(refuse("--placement", "tetra"));
+                return Err(refuse("--placement", MethodKind::Tetra));
             }
         }
         if method != MethodKind::Voronoi {
             if self.pattern.is_some() {
-                return Err(refuse("--pattern", "voronoi"));
+                return Err(refuse("--pattern", MethodKind::Voronoi));
             }
             if self.impact.is_some() {
-                return Err(refuse("--impact", "voronoi"));
+                return Err(refuse("--impact", MethodKind::Voronoi));
             }
             if self.seeds_file.is_some() {
-                return Err(refuse("--seeds-file", "voronoi"));
+                return Err(refuse("--seeds-file", MethodKind::Voronoi));
             }
         }
         if method != MethodKind::Grid && self.grid.is_some() {
-            return Err(refuse("--grid", "grid"));
+            return Err(refuse("--grid", MethodKind::Grid));
         }
         if method == MethodKind::Grid {
             if self.pieces.is_some() {
