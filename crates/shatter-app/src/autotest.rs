@@ -112,7 +112,7 @@ fn run_script(
         // Add an object through the Add Object panel, as a user would.
         2 => {
             ui_state.open_add_panel();
-            ui_state.add.shape = ShapeKind::Cylinder;
+            ui_state.add.shape = ShapeKind::Builtin(shatter_sim::Shape::Cylinder);
             ui_state.add.random_vertices = "30".into();
             ui_state.add.color = ["0.35".into(), "0.75".into(), "0.35".into()];
             // Right of the wall, in view, set down just above the ground.

@@ -7,125 +7,30 @@
 use std::path::PathBuf;
 
 use glam::{DVec3, Vec3};
+pub use shatter_sim::{BondModel, MaterialPreset, MethodKind, Pattern, Shape};
 
 /// Identifier of a breakable object in the simulation.
 pub type ObjectId = u64;
 
-/// The shape a breakable object or a projectile is made from.
+/// The shape a breakable object or a projectile is made from: a built-in shape (the
+/// words of [`Shape`]) or a user mesh file.
 #[derive(Debug, Clone, PartialEq)]
 pub enum ShapeChoice {
-    /// Unity's cube (24 vertices).
-    Cube,
-    /// Unity's capsule (550 vertices).
-    Capsule,
-    /// Unity's cylinder (88 vertices).
-    Cylinder,
-    /// A sphere (radius 0.5).
-    Sphere,
-    /// A torus (a shape with a hole).
-    Torus,
-    /// The thesis's concave test model (958 vertices, 1394 triangles).
-    Bird,
+    /// A built-in shape.
+    Builtin(Shape),
     /// A user mesh read from a file (OBJ, STL, glTF/GLB).
     Custom(PathBuf),
 }
 
 impl ShapeChoice {
-    /// Short lower-case name, as used in scene files.
+    /// The built-in shape's word (as in scene files), or `custom`.
     pub fn name(&self) -> &'static str {
         match self {
-            ShapeChoice::Cube => "cube",
-            ShapeChoice::Capsule => "capsule",
-            ShapeChoice::Cylinder => "cylinder",
-            ShapeChoice::Sphere => "sphere",
-            ShapeChoice::Torus => "torus",
-            ShapeChoice::Bird => "bird",
+            ShapeChoice::Builtin(s) => s.name(),
             ShapeChoice::Custom(_) => "custom",
         }
     }
 }
-
-/// How an object is cut into fragments.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum MethodChoice {
-    /// The thesis: Delaunay tetrahedra of surface + random points.
-    Tetra,
-    /// Voronoi cells clipped to the mesh.
-    Voronoi,
-    /// Random planes slicing the mesh.
-    Slice,
-    /// A regular grid of bricks (box-shaped objects only).
-    Grid,
-}
-
-impl MethodChoice {
-    /// Every method, in the order the UI lists them.
-    pub const ALL: [MethodChoice; 4] = [Self::Tetra, Self::Voronoi, Self::Slice, Self::Grid];
-
-    /// Lower-case name, as in scene files and the CLI.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Tetra => "tetra",
-            Self::Voronoi => "voronoi",
-            Self::Slice => "slice",
-            Self::Grid => "grid",
-        }
-    }
-}
-
-/// Seed pattern of the Voronoi method.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum PatternChoice {
-    /// Seeds uniform in the mesh.
-    Uniform,
-    /// Seeds around a few centres.
-    Clustered,
-    /// Dense near an impact point, coarser outward (glass).
-    Radial,
-    /// Cells stretched along an axis (wood).
-    Splinter,
-}
-
-impl PatternChoice {
-    /// Every pattern, in the order the UI lists them.
-    pub const ALL: [PatternChoice; 4] =
-        [Self::Uniform, Self::Clustered, Self::Radial, Self::Splinter];
-
-    /// Lower-case name, as in scene files and the CLI.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Uniform => "uniform",
-            Self::Clustered => "clustered",
-            Self::Radial => "radial",
-            Self::Splinter => "splinter",
-        }
-    }
-}
-
-/// How fragments are held together.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum BondModelChoice {
-    /// The thesis: a rigid body per fragment and a breakable fixed joint per bond.
-    Joints,
-    /// Connected fragments form one rigid body; a bond graph breaks and splits it.
-    Clusters,
-}
-
-impl BondModelChoice {
-    /// Both models, in the order the UI lists them.
-    pub const ALL: [BondModelChoice; 2] = [Self::Clusters, Self::Joints];
-
-    /// Lower-case name, as in scene files and the CLI.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Joints => "joints",
-            Self::Clusters => "clusters",
-        }
-    }
-}
-
-/// Material presets offered by the UI.
-pub const MATERIAL_PRESETS: [&str; 6] = ["stone", "glass", "concrete", "wood", "ceramic", "ice"];
 
 /// Everything needed to build (or rebuild) a breakable object: the thesis's Add Object
 /// panel, its transform panel, and the fracture/material choices beyond the thesis.
@@ -134,9 +39,9 @@ pub struct ObjectSpec {
     /// Source shape.
     pub shape: ShapeChoice,
     /// Fracture method.
-    pub method: MethodChoice,
+    pub method: MethodKind,
     /// Seed pattern (Voronoi).
-    pub pattern: PatternChoice,
+    pub pattern: Pattern,
     /// "Random Vertices": random points added (tetra), number of pieces (voronoi, slice)
     /// or bricks along x (grid).
     pub random_vertices: u32,
@@ -150,8 +55,8 @@ pub struct ObjectSpec {
     pub lifetime: Option<f64>,
     /// "Color": linear RGB components in `[0, 1]`.
     pub color: [f32; 3],
-    /// Material preset name (one of [`MATERIAL_PRESETS`]).
-    pub material: String,
+    /// Material preset.
+    pub material: MaterialPreset,
     /// Position of the object's centre.
     pub position: DVec3,
     /// Scale along each axis (all positive).
@@ -175,15 +80,18 @@ pub struct ProjectileSpec {
     pub density: f64,
 }
 
+/// The simulator's defaults ([`shatter_sim::ProjectileSpec::default`]): one definition
+/// for the Fire panel, the scene files and the CLI.
 impl Default for ProjectileSpec {
     fn default() -> Self {
+        let d = shatter_sim::ProjectileSpec::default();
         Self {
-            shape: ShapeChoice::Sphere,
-            lifetime: Some(10.0),
-            color: [0.9, 0.2, 0.1],
-            speed: 40.0,
-            size: 0.5,
-            density: 5000.0,
+            shape: ShapeChoice::Builtin(d.shape.shape().unwrap_or(Shape::Sphere)),
+            lifetime: d.last.map(f64::from),
+            color: d.color,
+            speed: f64::from(d.speed),
+            size: f64::from(d.size),
+            density: f64::from(d.density),
         }
     }
 }
@@ -246,7 +154,7 @@ pub enum SimCommand {
         power: f64,
     },
     /// Switch the bond model (applies to objects built afterwards and on reset).
-    SetBondModel(BondModelChoice),
+    SetBondModel(BondModel),
     /// Save the scene as TOML.
     SaveScene(PathBuf),
     /// Replace the scene with a TOML file.

@@ -12,9 +12,9 @@ use bevy::prelude::{Quat, Resource, Vec3};
 use shatter_sim::scene::Scene;
 use shatter_sim::{ExplosionSpec, ProjectileShape, RunState, SimEvent, World};
 
-use crate::commands::{BondModelChoice, ObjectId, ObjectSpec, ShapeChoice, SimCommand};
+use crate::commands::{BondModel, ObjectId, ObjectSpec, ShapeChoice, SimCommand};
 use crate::render::fragment_mesh::{FlatMesh, flat_mesh, flat_trimesh};
-use crate::spec_convert::{from_sim_spec, projectile_points, to_sim_bond_model, to_sim_spec};
+use crate::spec_convert::{from_sim_spec, projectile_points, to_sim_spec};
 
 /// The scene the app opens with (also embedded in the web build).
 pub const DEFAULT_SCENE: &str = include_str!("../../../assets/scenes/default.toml");
@@ -92,7 +92,7 @@ pub const MAX_STEPS_PER_FRAME: usize = 4;
 pub struct SimBridge {
     world: World,
     /// Bond model for objects added from now on (`None`: the world's default).
-    bond_model: Option<BondModelChoice>,
+    bond_model: Option<BondModel>,
     build: u32,
     accumulator: f64,
     step_ms: f64,
@@ -183,12 +183,13 @@ impl SimBridge {
                     .map_err(|e| e.to_string())?;
             }
             SimCommand::Fire { spec, from, to } => {
-                let shape = match &spec.shape {
-                    ShapeChoice::Cube => ProjectileShape::Cube,
-                    ShapeChoice::Sphere => ProjectileShape::Sphere,
-                    ShapeChoice::Capsule => ProjectileShape::Capsule,
-                    ShapeChoice::Cylinder => ProjectileShape::Cylinder,
-                    other => ProjectileShape::Custom(projectile_points(other)?),
+                let primitive = match &spec.shape {
+                    ShapeChoice::Builtin(s) => ProjectileShape::primitive(*s),
+                    ShapeChoice::Custom(_) => None,
+                };
+                let shape = match primitive {
+                    Some(p) => p,
+                    None => ProjectileShape::Custom(projectile_points(&spec.shape)?),
                 };
                 let p = shatter_sim::ProjectileSpec {
                     shape,
@@ -235,9 +236,7 @@ impl SimBridge {
             // From the file, so mesh paths resolve relative to the scene's folder.
             Scene::load(path).map_err(|e| e.to_string())?
         };
-        let world = scene
-            .build(self.bond_model.map(to_sim_bond_model))
-            .map_err(|e| e.to_string())?;
+        let world = scene.build(self.bond_model).map_err(|e| e.to_string())?;
         self.world = world;
         self.accumulator = 0.0;
         self.new_build();

@@ -6,74 +6,19 @@
 //! starts from its current simulation spec and replaces only what the panels show.
 
 use glam::DVec3;
-use shatter_sim::material::MATERIAL_NAMES;
 use shatter_sim::{
-    BondModel, FractureMethod, FractureParams, FractureSource, Material, ObjectSpec as SimSpec,
-    Pattern,
+    BondModel, FractureParams, FractureSource, MaterialPreset, MethodKind, ObjectSpec as SimSpec,
+    Shape,
 };
 
-use crate::commands::{BondModelChoice, MethodChoice, ObjectSpec, PatternChoice, ShapeChoice};
-
-/// The simulation's bond model for the panels' choice.
-pub fn to_sim_bond_model(m: BondModelChoice) -> BondModel {
-    match m {
-        BondModelChoice::Joints => BondModel::Joints,
-        BondModelChoice::Clusters => BondModel::Clusters,
-    }
-}
-
-fn to_sim_method(m: MethodChoice) -> FractureMethod {
-    match m {
-        MethodChoice::Tetra => FractureMethod::Tetra,
-        MethodChoice::Voronoi => FractureMethod::Voronoi,
-        MethodChoice::Slice => FractureMethod::Slice,
-        MethodChoice::Grid => FractureMethod::Grid,
-    }
-}
-
-fn from_sim_method(m: FractureMethod) -> MethodChoice {
-    match m {
-        FractureMethod::Tetra => MethodChoice::Tetra,
-        FractureMethod::Voronoi => MethodChoice::Voronoi,
-        FractureMethod::Slice => MethodChoice::Slice,
-        FractureMethod::Grid => MethodChoice::Grid,
-    }
-}
-
-fn to_sim_pattern(p: PatternChoice) -> Pattern {
-    match p {
-        PatternChoice::Uniform => Pattern::Uniform,
-        PatternChoice::Clustered => Pattern::Clustered,
-        PatternChoice::Radial => Pattern::Radial,
-        PatternChoice::Splinter => Pattern::Splinter,
-    }
-}
-
-fn from_sim_pattern(p: Pattern) -> PatternChoice {
-    match p {
-        Pattern::Uniform => PatternChoice::Uniform,
-        Pattern::Clustered => PatternChoice::Clustered,
-        Pattern::Radial => PatternChoice::Radial,
-        Pattern::Splinter => PatternChoice::Splinter,
-    }
-}
-
-/// The preset a material was made from: the first whose density, friction and
-/// restitution match (strength is the break force, shown on its own).
-fn preset_name(m: &Material) -> Option<&'static str> {
-    MATERIAL_NAMES.into_iter().find(|name| {
-        Material::preset(name).is_some_and(|p| {
-            p.density == m.density && p.friction == m.friction && p.restitution == m.restitution
-        })
-    })
-}
+use crate::commands::{ObjectSpec, ShapeChoice};
 
 /// The simulation's spec for what the panels ask for. `base` is the object being edited
 /// (its hidden properties are kept); `bond_model` the model chosen in the panel.
 pub fn to_sim_spec(
     spec: &ObjectSpec,
     base: Option<&SimSpec>,
-    bond_model: Option<BondModelChoice>,
+    bond_model: Option<BondModel>,
 ) -> Result<SimSpec, String> {
     let base_params = base.and_then(|b| match &b.source {
         FractureSource::Shape { params, .. } | FractureSource::MeshFile { params, .. } => {
@@ -82,14 +27,14 @@ pub fn to_sim_spec(
         FractureSource::Prebuilt(_) => None,
     });
     let mut params = base_params.clone().unwrap_or_default();
-    params.method = Some(to_sim_method(spec.method));
-    params.pattern = Some(to_sim_pattern(spec.pattern));
+    params.method = Some(spec.method);
+    params.pattern = Some(spec.pattern);
     params.skip = spec.skip;
     params.center = spec.center;
     match spec.method {
-        MethodChoice::Tetra => params.random_vertices = spec.random_vertices,
-        MethodChoice::Voronoi | MethodChoice::Slice => params.pieces = spec.random_vertices,
-        MethodChoice::Grid => {
+        MethodKind::Tetra => params.random_vertices = spec.random_vertices,
+        MethodKind::Voronoi | MethodKind::Slice => params.pieces = spec.random_vertices,
+        MethodKind::Grid => {
             // Keep an edited object's grid if its x count did not change; otherwise cut
             // cubes of about equal size along each axis.
             let keep = base_params
@@ -108,17 +53,15 @@ pub fn to_sim_spec(
             path: path.display().to_string(),
             params,
         },
-        shape => FractureSource::Shape {
-            name: shape.name().to_owned(),
+        ShapeChoice::Builtin(shape) => FractureSource::Shape {
+            shape: *shape,
             params,
         },
     };
-    let preset = Material::preset(&spec.material)
-        .ok_or_else(|| format!("unknown material '{}'", spec.material))?;
     // An edited object keeps its material overrides while the preset stays the same.
     let material = match base {
-        Some(b) if preset_name(&b.material) == Some(spec.material.as_str()) => b.material,
-        _ => preset,
+        Some(b) if MaterialPreset::of(&b.material) == Some(spec.material) => b.material,
+        _ => spec.material.material(),
     };
     let mut out = match base {
         Some(b) => SimSpec {
@@ -146,7 +89,7 @@ pub fn to_sim_spec(
     out.color = spec.color;
     out.last = spec.lifetime.map(|t| t as f32);
     if let Some(m) = bond_model {
-        out.bond_model = Some(to_sim_bond_model(m));
+        out.bond_model = Some(m);
     }
     Ok(out)
 }
@@ -154,42 +97,34 @@ pub fn to_sim_spec(
 /// The panels' view of a simulation object (for Edit). An object built from a prebuilt
 /// fracture shows as a cube; editing it rebuilds it from a cube.
 pub fn from_sim_spec(spec: &SimSpec) -> ObjectSpec {
-    let material_name = preset_name(&spec.material).unwrap_or("stone");
+    let material = MaterialPreset::of(&spec.material).unwrap_or_default();
     let (shape, params) = match &spec.source {
-        FractureSource::Shape { name, params } => (
-            match name.as_str() {
-                "capsule" => ShapeChoice::Capsule,
-                "cylinder" => ShapeChoice::Cylinder,
-                "sphere" => ShapeChoice::Sphere,
-                "torus" => ShapeChoice::Torus,
-                "bird" => ShapeChoice::Bird,
-                _ => ShapeChoice::Cube,
-            },
-            params.clone(),
-        ),
+        FractureSource::Shape { shape, params } => (ShapeChoice::Builtin(*shape), params.clone()),
         FractureSource::MeshFile { path, params } => {
             (ShapeChoice::Custom(path.into()), params.clone())
         }
-        FractureSource::Prebuilt(_) => (ShapeChoice::Cube, FractureParams::default()),
+        FractureSource::Prebuilt(_) => {
+            (ShapeChoice::Builtin(Shape::Cube), FractureParams::default())
+        }
     };
     let method = params.method.unwrap_or(spec.material.method);
     let pattern = params.pattern.unwrap_or(spec.material.pattern);
     let random_vertices = match method {
-        FractureMethod::Tetra => params.random_vertices,
-        FractureMethod::Voronoi | FractureMethod::Slice => params.pieces,
-        FractureMethod::Grid => params.grid[0],
+        MethodKind::Tetra => params.random_vertices,
+        MethodKind::Voronoi | MethodKind::Slice => params.pieces,
+        MethodKind::Grid => params.grid[0],
     };
     ObjectSpec {
         shape,
-        method: from_sim_method(method),
-        pattern: from_sim_pattern(pattern),
+        method,
+        pattern,
         random_vertices,
         skip: params.skip,
         center: params.center,
         break_force: f64::from(spec.effective_break_force()),
         lifetime: spec.last.map(f64::from),
         color: spec.color,
-        material: material_name.to_owned(),
+        material,
         position: spec.position.as_dvec3(),
         scale: spec.scale.as_dvec3(),
     }
@@ -203,8 +138,7 @@ pub fn projectile_points(shape: &ShapeChoice) -> Result<Vec<DVec3>, String> {
         ShapeChoice::Custom(path) => {
             shatter_geom::io::load_mesh(path).map_err(|e| format!("projectile: {e}"))?
         }
-        other => shatter_geom::shapes::by_name(other.name())
-            .ok_or_else(|| format!("projectile: no built-in shape '{}'", other.name()))?,
+        ShapeChoice::Builtin(shape) => shape.mesh(),
     };
     let (lo, hi) = mesh
         .bounds()

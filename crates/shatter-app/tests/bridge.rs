@@ -4,7 +4,7 @@
 
 use glam::{DVec3, Vec3};
 use shatter_app::commands::{
-    BondModelChoice, MethodChoice, ObjectSpec, PatternChoice, ProjectileSpec, ShapeChoice,
+    BondModel, MaterialPreset, MethodKind, ObjectSpec, Pattern, ProjectileSpec, Shape, ShapeChoice,
     SimCommand,
 };
 use shatter_app::sim_bridge::{PROJECTILE_BIT, SimBridge, check_custom_mesh};
@@ -17,16 +17,16 @@ fn steps(b: &mut SimBridge, n: usize) {
 
 fn cube_spec(position: DVec3) -> ObjectSpec {
     ObjectSpec {
-        shape: ShapeChoice::Cube,
-        method: MethodChoice::Voronoi,
-        pattern: PatternChoice::Uniform,
+        shape: ShapeChoice::Builtin(Shape::Cube),
+        method: MethodKind::Voronoi,
+        pattern: Pattern::Uniform,
         random_vertices: 12,
         skip: 0,
         center: false,
         break_force: 500.0,
         lifetime: None,
         color: [0.2, 0.5, 0.8],
-        material: "stone".into(),
+        material: MaterialPreset::Stone,
         position,
         scale: DVec3::ONE,
     }
@@ -169,16 +169,16 @@ fn add_edit_delete_and_clean_change_the_world() {
     let spec = b.object_spec(id).unwrap();
     assert_eq!(spec.random_vertices, 12);
     assert_eq!(spec.position, DVec3::new(5.0, 0.5, 0.0));
-    assert_eq!(spec.material, "stone");
+    assert_eq!(spec.material, MaterialPreset::Stone);
 
     // Edit: 30 tetra random points instead.
     let edited = ObjectSpec {
-        method: MethodChoice::Tetra,
+        method: MethodKind::Tetra,
         random_vertices: 30,
         ..spec
     };
     b.apply(SimCommand::EditObject(id, edited)).unwrap();
-    assert_eq!(b.object_spec(id).unwrap().method, MethodChoice::Tetra);
+    assert_eq!(b.object_spec(id).unwrap().method, MethodKind::Tetra);
     assert_ne!(b.stats().fragments - before, added);
 
     b.apply(SimCommand::DeleteObject(id)).unwrap();
@@ -195,7 +195,7 @@ fn editing_a_scene_object_keeps_what_the_panels_do_not_show() {
     let mut b = SimBridge::default_scene();
     // Object 0 is the anchored brick wall.
     let wall = b.object_spec(0).unwrap();
-    assert_eq!(wall.method, MethodChoice::Grid);
+    assert_eq!(wall.method, MethodKind::Grid);
     assert_eq!(wall.random_vertices, 16);
     let bricks = b.stats().fragments;
     b.apply(SimCommand::EditObject(
@@ -219,8 +219,8 @@ fn a_refused_object_changes_nothing_and_says_why() {
     // A grid only cuts boxes.
     let err = b
         .apply(SimCommand::AddObject(ObjectSpec {
-            shape: ShapeChoice::Bird,
-            method: MethodChoice::Grid,
+            shape: ShapeChoice::Builtin(Shape::Bird),
+            method: MethodKind::Grid,
             ..cube_spec(DVec3::ZERO)
         }))
         .unwrap_err();
@@ -257,7 +257,7 @@ fn an_explosion_breaks_bonds_near_it() {
 #[test]
 fn bond_model_choice_applies_to_new_objects() {
     let mut b = SimBridge::default_scene();
-    b.apply(SimCommand::SetBondModel(BondModelChoice::Joints))
+    b.apply(SimCommand::SetBondModel(BondModel::Joints))
         .unwrap();
     let id = b
         .apply(SimCommand::AddObject(cube_spec(DVec3::new(5.0, 0.5, 0.0))))

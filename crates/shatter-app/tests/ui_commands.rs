@@ -5,7 +5,9 @@
 use std::path::{Path, PathBuf};
 
 use glam::{DVec3, Vec3};
-use shatter_app::commands::{MethodChoice, ShapeChoice, SimCommand};
+use shatter_app::commands::{
+    BondModel, MaterialPreset, MethodKind, Pattern, ProjectileSpec, Shape, ShapeChoice, SimCommand,
+};
 use shatter_app::sim_bridge::check_custom_mesh;
 use shatter_app::ui::forms::{
     AddObjectForm, FireForm, ForceForm, SceneFileForm, ShapeKind, TransformForm,
@@ -29,7 +31,7 @@ fn add_object_defaults_follow_the_thesis() {
         .unwrap();
     assert_eq!(spec.position, DVec3::new(0.0, 10.0, 0.0));
     assert_eq!(spec.scale, DVec3::ONE);
-    assert_eq!(spec.shape, ShapeChoice::Cube);
+    assert_eq!(spec.shape, ShapeChoice::Builtin(Shape::Cube));
     assert_eq!(spec.lifetime, None);
 }
 
@@ -113,7 +115,7 @@ fn unreadable_custom_mesh_is_refused() {
 #[test]
 fn voronoi_needs_at_least_one_piece() {
     let form = AddObjectForm {
-        method: MethodChoice::Voronoi,
+        method: MethodKind::Voronoi,
         random_vertices: "0".into(),
         ..Default::default()
     };
@@ -185,13 +187,13 @@ fn fire_ok_sets_the_projectile_only_when_valid() {
     assert_eq!(s.projectile, before);
     assert!(s.fire_errors.get("speed").is_some());
     s.fire = FireForm {
-        shape: ShapeKind::Cube,
+        shape: ShapeKind::Builtin(Shape::Cube),
         speed: "75".into(),
         last: "4".into(),
         ..Default::default()
     };
     assert!(s.fire_ok(&any_mesh));
-    assert_eq!(s.projectile.shape, ShapeChoice::Cube);
+    assert_eq!(s.projectile.shape, ShapeChoice::Builtin(Shape::Cube));
     assert_eq!(s.projectile.speed, 75.0);
     assert_eq!(s.projectile.lifetime, Some(4.0));
 }
@@ -284,7 +286,7 @@ fn edit_and_delete_act_on_the_clicked_object_and_exclude_each_other() {
 #[test]
 fn edit_fills_the_panel_with_the_object_and_draw_rebuilds_it() {
     let spec = AddObjectForm {
-        shape: ShapeKind::Capsule,
+        shape: ShapeKind::Builtin(Shape::Capsule),
         random_vertices: "77".into(),
         last: "12".into(),
         ..Default::default()
@@ -293,7 +295,7 @@ fn edit_fills_the_panel_with_the_object_and_draw_rebuilds_it() {
     .unwrap();
     let mut s = UiState::default();
     s.edit_object(9, &spec);
-    assert_eq!(s.add.shape, ShapeKind::Capsule);
+    assert_eq!(s.add.shape, ShapeKind::Builtin(Shape::Capsule));
     assert_eq!(s.add.random_vertices, "77");
     assert_eq!(s.transform.position[1], "10");
     s.next_page(&any_mesh);
@@ -341,4 +343,45 @@ fn ground_hit_only_in_front_of_the_eye() {
         Some(Vec3::new(1.0, 0.0, 0.0))
     );
     assert_eq!(ground_hit(Vec3::new(0.0, 2.0, 0.0), Vec3::Y), None);
+}
+
+#[test]
+fn the_shape_lists_come_from_the_vocabulary() {
+    let object = ShapeKind::object_options();
+    let builtin: Vec<Shape> = object
+        .iter()
+        .filter_map(|k| match k {
+            ShapeKind::Builtin(s) => Some(*s),
+            ShapeKind::Custom => None,
+        })
+        .collect();
+    assert_eq!(builtin, Shape::ALL);
+    assert_eq!(object.last(), Some(&ShapeKind::Custom));
+    assert_eq!(
+        ShapeKind::projectile_options(),
+        [Shape::Cube, Shape::Capsule, Shape::Cylinder, Shape::Sphere]
+            .map(ShapeKind::Builtin)
+            .into_iter()
+            .chain([ShapeKind::Custom])
+            .collect::<Vec<_>>()
+    );
+    assert_eq!(ShapeKind::Builtin(Shape::Bird).label(), "Bird");
+    // Every other panel list iterates a vocabulary's ALL: the words are the library's.
+    assert_eq!(MethodKind::ALL.len(), 4);
+    assert_eq!(Pattern::ALL.len(), 4);
+    assert!(MaterialPreset::ALL.contains(&MaterialPreset::Brick));
+    assert_eq!(BondModel::ALL[0], BondModel::default());
+}
+
+#[test]
+fn the_fire_panel_defaults_are_the_simulators() {
+    let sim = shatter_sim::ProjectileSpec::default();
+    let app = ProjectileSpec::default();
+    assert_eq!(app.speed, f64::from(sim.speed));
+    assert_eq!(app.size, f64::from(sim.size));
+    assert_eq!(app.density, f64::from(sim.density));
+    assert_eq!(app.color, sim.color);
+    assert_eq!(app.lifetime, sim.last.map(f64::from));
+    let validated = FireForm::default().validate(&|_| Ok(())).unwrap();
+    assert_eq!(validated, app);
 }

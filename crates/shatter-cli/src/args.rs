@@ -4,7 +4,6 @@
 //! commands then validate values (positive scale, at least one piece, ...) into a typed
 //! configuration, again failing with exit code 2.
 
-use std::fmt;
 use std::path::{Path, PathBuf};
 
 use clap::ValueEnum;
@@ -34,6 +33,26 @@ pub fn parse_vec3(text: &str) -> Result<DVec3, String> {
     Ok(DVec3::from_array(xyz))
 }
 
+/// Parses `NX,NY,NZ`: three cell counts, each in 1..=1000 (the scene files' limit).
+pub fn parse_cells(text: &str) -> Result<[u32; 3], String> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    if parts.len() != 3 {
+        return Err(format!(
+            "expected 3 comma-separated cell counts NX,NY,NZ, found {}",
+            parts.len()
+        ));
+    }
+    let mut cells = [0; 3];
+    for (slot, part) in cells.iter_mut().zip(&parts) {
+        *slot = part
+            .parse()
+            .ok()
+            .filter(|n| (1..=1000).contains(n))
+            .ok_or_else(|| format!("'{part}' is not a whole number in 1..=1000"))?;
+    }
+    Ok(cells)
+}
+
 /// Parses one benchmark size: a whole number of at least 1 (used with
 /// `value_delimiter = ','`, so `--sizes 1000,10000` gives a list).
 pub fn parse_size(text: &str) -> Result<usize, String> {
@@ -59,43 +78,6 @@ pub fn validate_scale(scale: Option<DVec3>) -> Result<DVec3, CliError> {
         )));
     }
     Ok(s)
-}
-
-/// A built-in shape.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ShapeName {
-    /// Unity's cube: 24 vertices (8 corners split per face), side 1.
-    Cube,
-    /// Unity's capsule: 550 vertices.
-    Capsule,
-    /// Unity's cylinder: 88 vertices.
-    Cylinder,
-    /// A UV sphere.
-    Sphere,
-    /// A torus (not simply connected).
-    Torus,
-    /// The bundled concave low-poly bird (about 958 vertices, 1394 triangles).
-    Bird,
-}
-
-impl ShapeName {
-    /// The name as typed on the command line.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Self::Cube => "cube",
-            Self::Capsule => "capsule",
-            Self::Cylinder => "cylinder",
-            Self::Sphere => "sphere",
-            Self::Torus => "torus",
-            Self::Bird => "bird",
-        }
-    }
-}
-
-impl fmt::Display for ShapeName {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.as_str())
-    }
 }
 
 /// A random point distribution.

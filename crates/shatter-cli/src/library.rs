@@ -3,18 +3,17 @@
 
 use std::path::Path;
 
-use shatter_geom::fracture::{Fracture, FractureParams, Method, Pattern, Placement};
+use shatter_geom::fracture::{Fracture, FractureParams, Method, Pattern};
 use shatter_geom::io::{self, ExportObject};
 use shatter_geom::mesh::repair::{RepairOptions, RepairReport};
 use shatter_geom::model::{Material, Model};
 use shatter_geom::progress::Progress;
 use shatter_geom::sampling;
+use shatter_geom::shapes::Shape;
 use shatter_geom::{DVec3, TriMesh};
 
-use crate::args::{Distribution, MeshFormat, ShapeName};
-use crate::commands::fracture::{
-    FractureConfig, MethodConfig, PatternArg, PlacementArg, VoronoiSeeds,
-};
+use crate::args::{Distribution, MeshFormat};
+use crate::commands::fracture::{FractureConfig, MethodConfig, VoronoiSeeds};
 use crate::error::CliError;
 use crate::output;
 
@@ -35,8 +34,8 @@ pub fn random_points(
 }
 
 /// A built-in shape at unit scale.
-pub fn builtin_shape(name: ShapeName) -> Result<TriMesh, CliError> {
-    shatter_geom::shapes::by_name(name.as_str())
+pub fn builtin_shape(name: Shape) -> Result<TriMesh, CliError> {
+    shatter_geom::shapes::by_name(name.name())
         .ok_or_else(|| CliError::internal(format!("built-in shape '{name}' is missing")))
 }
 
@@ -283,8 +282,17 @@ pub fn fracture(
     model: &Model,
     config: &FractureConfig,
 ) -> Result<(Fracture, Vec<String>), CliError> {
+    if let MethodConfig::Grid { cells } = config.method {
+        return Ok((grid_fracture(model, cells)?, Vec::new()));
+    }
+    let Some(method) = method_params(&config.method) else {
+        return Err(CliError::input(format!(
+            "{}: not a shatter_geom method",
+            config.describe()
+        )));
+    };
     let params = FractureParams {
-        method: method_params(&config.method),
+        method,
         seed: config.seed,
     };
     let mut result = shatter_geom::fracture::fracture_model(model, &params)
@@ -293,8 +301,34 @@ pub fn fracture(
     Ok((result, warnings))
 }
 
-fn method_params(method: &MethodConfig) -> Method {
-    match method {
+/// The box `model` spans (`--shape cube`, scaled) cut into `cells` bricks, bonded across
+/// every shared face.
+fn grid_fracture(model: &Model, cells: [u32; 3]) -> Result<Fracture, CliError> {
+    let (lo, hi) = model
+        .mesh
+        .bounds()
+        .ok_or_else(|| CliError::input("--method grid: the mesh has no vertices"))?;
+    let mut fracture = shatter_sim::testing::box_grid_fracture(cells, hi - lo);
+    let centre = (lo + hi) / 2.0;
+    if centre != DVec3::ZERO {
+        for f in &mut fracture.fragments {
+            f.mesh.positions.iter_mut().for_each(|p| *p += centre);
+            f.convex_pieces
+                .iter_mut()
+                .flatten()
+                .for_each(|p| *p += centre);
+            f.centroid += centre;
+        }
+        for bond in &mut fracture.bonds {
+            bond.centroid += centre;
+        }
+    }
+    Ok(fracture)
+}
+
+/// The `shatter_geom` method of `method` (`None` for the grid, which `shatter_sim` builds).
+fn method_params(method: &MethodConfig) -> Option<Method> {
+    Some(match method {
         MethodConfig::Tetra {
             random_vertices,
             skip,
@@ -304,26 +338,18 @@ fn method_params(method: &MethodConfig) -> Method {
             random_vertices: *random_vertices,
             skip: *skip,
             center: *center,
-            placement: match placement {
-                PlacementArg::Interior => Placement::Interior,
-                PlacementArg::Thesis => Placement::Thesis,
-            },
+            placement: *placement,
         },
         MethodConfig::Voronoi { seeds, impact } => {
             let (pieces, pattern, seeds) = match seeds {
                 VoronoiSeeds::Pattern { count, pattern } => (*count, *pattern, None),
                 VoronoiSeeds::Points(points) => {
-                    (points.len(), PatternArg::Uniform, Some(points.clone()))
+                    (points.len(), Pattern::Uniform, Some(points.clone()))
                 }
             };
             Method::Voronoi {
                 pieces,
-                pattern: match pattern {
-                    PatternArg::Uniform => Pattern::Uniform,
-                    PatternArg::Clustered => Pattern::Clustered,
-                    PatternArg::Radial => Pattern::Radial,
-                    PatternArg::Splinter => Pattern::Splinter,
-                },
+                pattern,
                 impact: *impact,
                 seeds,
             }
@@ -332,5 +358,6 @@ fn method_params(method: &MethodConfig) -> Method {
             pieces: *planes,
             planes: None,
         },
-    }
+        MethodConfig::Grid { .. } => return None,
+    })
 }

@@ -16,6 +16,7 @@ pub mod progress;
 pub mod sampling;
 pub mod shapes;
 pub mod util;
+pub mod vocab;
 
 pub use glam::{DMat3, DVec3};
 pub use mesh::TriMesh;

@@ -15,7 +15,8 @@ pub enum SimError {
     },
     /// A material preset name that does not exist.
     #[error(
-        "{key}: unknown material `{name}` (expected one of glass, stone, concrete, wood, ceramic, ice)"
+        "{key}: unknown material `{name}` (expected one of: {})",
+        crate::material::MATERIAL_NAMES.join(", ")
     )]
     UnknownMaterial {
         /// The key holding the name.
@@ -24,7 +25,10 @@ pub enum SimError {
         name: String,
     },
     /// A shape name that does not exist.
-    #[error("{key}: unknown shape `{name}`")]
+    #[error(
+        "{key}: unknown shape `{name}` (expected one of: {})",
+        shatter_geom::shapes::NAMES.join(", ")
+    )]
     UnknownShape {
         /// The key holding the name.
         key: String,

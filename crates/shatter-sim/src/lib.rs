@@ -39,12 +39,13 @@ pub mod testing;
 pub mod world;
 
 pub use error::SimError;
-pub use material::{FractureMethod, Material, Pattern};
+pub use material::{FractureMethod, Material, MaterialPreset, MethodKind, Pattern};
 pub use object::{
     BondModel, ExplosionSpec, FractureParams, FractureSource, ObjectSpec, ProjectileShape,
     ProjectileSpec,
 };
 pub use rapier3d::math::Pose;
+pub use shatter_geom::shapes::Shape;
 pub use world::{
     BreakCause, ObjectId, ProjectileView, RunState, SimEvent, Stats, World, WorldSettings,
 };

@@ -19,36 +19,39 @@
 //! [`Material::wear`]).
 
 use serde::{Deserialize, Serialize};
+pub use shatter_geom::fracture::{MethodKind, Pattern};
 
 use crate::error::SimError;
 
-/// How a material's objects are cut by default.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum FractureMethod {
-    /// The thesis's Delaunay tetrahedra.
-    Tetra,
-    /// Voronoi cells clipped to the mesh.
-    Voronoi,
-    /// Plane slices.
-    Slice,
-    /// A regular grid of boxes (bricks); only for box-shaped objects (see
-    /// [`crate::testing::box_grid_fracture`]).
-    Grid,
-}
+/// The name of a fracture method: [`shatter_geom::fracture::MethodKind`] under its
+/// former name here.
+pub type FractureMethod = MethodKind;
 
-/// Seed pattern for Voronoi fracture.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Pattern {
-    /// Uniform seeds.
-    Uniform,
-    /// Seeds clustered around a few centres.
-    Clustered,
-    /// Dense near an impact point (glass).
-    Radial,
-    /// Cells stretched along an axis (wood).
-    Splinter,
+shatter_geom::vocabulary! {
+    /// A material preset: see the table above and [`MaterialPreset::material`].
+    ///
+    /// ```
+    /// use shatter_sim::MaterialPreset;
+    /// let glass: MaterialPreset = "glass".parse().expect("a preset");
+    /// assert!(glass.material().density > 2000.0);
+    /// assert!("cheese".parse::<MaterialPreset>().unwrap_err().to_string().contains("brick"));
+    /// ```
+    pub enum MaterialPreset: "material", default Stone {
+        /// Annealed soda-lime glass.
+        Glass = "glass",
+        /// Limestone / granite.
+        Stone = "stone",
+        /// C30 concrete.
+        Concrete = "concrete",
+        /// Softwood (C24).
+        Wood = "wood",
+        /// Porcelain.
+        Ceramic = "ceramic",
+        /// Freshwater ice near 0 °C.
+        Ice = "ice",
+        /// Clay-brick masonry.
+        Brick = "brick",
+    }
 }
 
 /// Physical and fracture properties of a breakable object.
@@ -64,7 +67,7 @@ pub struct Material {
     /// model compares it).
     pub strength: f32,
     /// Default fracture method.
-    pub method: FractureMethod,
+    pub method: MethodKind,
     /// Default Voronoi seed pattern.
     pub pattern: Pattern,
     /// Compressive strength of a bond's face (Pa), for the stress solver.
@@ -79,13 +82,64 @@ pub struct Material {
     pub wear: f32,
 }
 
-/// The names of the presets, in a fixed order.
-pub const MATERIAL_NAMES: [&str; 7] = [
-    "glass", "stone", "concrete", "wood", "ceramic", "ice", "brick",
-];
+/// The names of the presets, in a fixed order (the words of [`MaterialPreset`]).
+pub const MATERIAL_NAMES: &[&str] = MaterialPreset::NAMES;
+
+impl MaterialPreset {
+    /// The preset's material.
+    pub fn material(self) -> Material {
+        use MaterialPreset as P;
+        let (compression, tension, shear, wear) = match self {
+            P::Glass => (1000e6, 40e6, 30e6, 0.25),
+            P::Stone => (100e6, 6e6, 12e6, 0.2),
+            P::Concrete => (30e6, 3e6, 4e6, 0.3),
+            P::Wood => (40e6, 20e6, 6e6, 0.1),
+            P::Ceramic => (500e6, 40e6, 40e6, 0.3),
+            P::Ice => (5e6, 1e6, 0.8e6, 0.4),
+            P::Brick => (8e6, 0.1e6, 0.2e6, 0.3),
+        };
+        let (density, friction, restitution, strength, pattern) = match self {
+            P::Glass => (2500.0, 0.4, 0.2, 2_000.0, Pattern::Radial),
+            P::Stone => (2600.0, 0.7, 0.1, 20_000.0, Pattern::Uniform),
+            P::Concrete => (2400.0, 0.8, 0.05, 12_000.0, Pattern::Clustered),
+            P::Wood => (700.0, 0.5, 0.2, 6_000.0, Pattern::Splinter),
+            P::Ceramic => (2300.0, 0.5, 0.15, 3_000.0, Pattern::Radial),
+            P::Ice => (917.0, 0.05, 0.1, 1_500.0, Pattern::Uniform),
+            P::Brick => (1800.0, 0.7, 0.05, 12_000.0, Pattern::Uniform),
+        };
+        Material {
+            density,
+            friction,
+            restitution,
+            strength,
+            method: MethodKind::Voronoi,
+            pattern,
+            compression,
+            tension,
+            shear,
+            wear,
+        }
+    }
+
+    /// The preset a material was made from: the first whose density, friction and
+    /// restitution match (the strength is often overridden by a break force).
+    ///
+    /// ```
+    /// use shatter_sim::{Material, MaterialPreset};
+    /// let mut wood = MaterialPreset::Wood.material();
+    /// wood.strength = 1.0;
+    /// assert_eq!(MaterialPreset::of(&wood), Some(MaterialPreset::Wood));
+    /// ```
+    pub fn of(m: &Material) -> Option<MaterialPreset> {
+        MaterialPreset::ALL.iter().copied().find(|p| {
+            let q = p.material();
+            q.density == m.density && q.friction == m.friction && q.restitution == m.restitution
+        })
+    }
+}
 
 impl Material {
-    /// The preset called `name` (glass, stone, concrete, wood, ceramic, ice, brick).
+    /// The preset called `name` (a word of [`MaterialPreset`]).
     ///
     /// ```
     /// let glass = shatter_sim::Material::preset("glass").expect("a preset");
@@ -93,87 +147,9 @@ impl Material {
     /// assert!(shatter_sim::Material::preset("cheese").is_none());
     /// ```
     pub fn preset(name: &str) -> Option<Material> {
-        let (compression, tension, shear, wear) = match name {
-            "glass" => (1000e6, 40e6, 30e6, 0.25),
-            "stone" => (100e6, 6e6, 12e6, 0.2),
-            "concrete" => (30e6, 3e6, 4e6, 0.3),
-            "wood" => (40e6, 20e6, 6e6, 0.1),
-            "ceramic" => (500e6, 40e6, 40e6, 0.3),
-            "ice" => (5e6, 1e6, 0.8e6, 0.4),
-            "brick" => (8e6, 0.1e6, 0.2e6, 0.3),
-            _ => return None,
-        };
-        let (density, friction, restitution, strength, method, pattern) = match name {
-            "glass" => (
-                2500.0,
-                0.4,
-                0.2,
-                2_000.0,
-                FractureMethod::Voronoi,
-                Pattern::Radial,
-            ),
-            "stone" => (
-                2600.0,
-                0.7,
-                0.1,
-                20_000.0,
-                FractureMethod::Voronoi,
-                Pattern::Uniform,
-            ),
-            "concrete" => (
-                2400.0,
-                0.8,
-                0.05,
-                12_000.0,
-                FractureMethod::Voronoi,
-                Pattern::Clustered,
-            ),
-            "wood" => (
-                700.0,
-                0.5,
-                0.2,
-                6_000.0,
-                FractureMethod::Voronoi,
-                Pattern::Splinter,
-            ),
-            "ceramic" => (
-                2300.0,
-                0.5,
-                0.15,
-                3_000.0,
-                FractureMethod::Voronoi,
-                Pattern::Radial,
-            ),
-            "ice" => (
-                917.0,
-                0.05,
-                0.1,
-                1_500.0,
-                FractureMethod::Voronoi,
-                Pattern::Uniform,
-            ),
-            "brick" => (
-                1800.0,
-                0.7,
-                0.05,
-                12_000.0,
-                FractureMethod::Voronoi,
-                Pattern::Uniform,
-            ),
-            _ => return None,
-        };
-        Some(Material {
-            density,
-            friction,
-            restitution,
-            strength,
-            method,
-            pattern,
-            compression,
-            tension,
-            shear,
-            wear,
-        })
+        name.parse::<MaterialPreset>()
+            .ok()
+            .map(MaterialPreset::material)
     }
 
     /// The stress limits of the material's bonds.
@@ -241,7 +217,7 @@ impl Material {
 
 impl Default for Material {
     fn default() -> Self {
-        Material::preset("stone").expect("stone is a preset")
+        MaterialPreset::default().material()
     }
 }
 
@@ -254,6 +230,23 @@ mod tests {
         for name in MATERIAL_NAMES {
             let m = Material::preset(name).expect("listed preset");
             m.validate(name).expect("preset values are valid");
+        }
+    }
+
+    #[test]
+    fn presets_round_trip_through_their_words() {
+        for &p in MaterialPreset::ALL {
+            assert_eq!(p.to_string().parse::<MaterialPreset>(), Ok(p));
+            assert_eq!(Material::preset(p.name()), Some(p.material()));
+            assert_eq!(MaterialPreset::of(&p.material()), Some(p), "{p}");
+        }
+    }
+
+    #[test]
+    fn unknown_preset_lists_every_preset() {
+        let err = Material::preset_or_error("cheese", "objects[0].material").unwrap_err();
+        for name in MATERIAL_NAMES {
+            assert!(err.to_string().contains(name), "{err} lacks {name}");
         }
     }
 

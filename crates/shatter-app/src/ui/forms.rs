@@ -7,9 +7,11 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use shatter_sim::ProjectileShape;
+
 use crate::commands::{
-    ForceSpec, MATERIAL_PRESETS, MethodChoice, ObjectSpec, PatternChoice, ProjectileSpec,
-    ShapeChoice, SimCommand,
+    ForceSpec, MaterialPreset, MethodKind, ObjectSpec, Pattern, ProjectileSpec, Shape, ShapeChoice,
+    SimCommand,
 };
 use crate::ui::fields::{
     parse_color, parse_count, parse_lifetime, parse_non_negative, parse_positive, parse_real,
@@ -46,67 +48,54 @@ impl FieldErrors {
 /// Checks that a custom mesh file can be used; returns a message otherwise.
 pub type MeshCheck<'a> = &'a dyn Fn(&Path) -> Result<(), String>;
 
-/// Shape selector of the Add Object and Fire panels.
+/// Shape selector of the Add Object and Fire panels: a built-in shape or a file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ShapeKind {
-    /// Cube.
-    Cube,
-    /// Capsule.
-    Capsule,
-    /// Cylinder.
-    Cylinder,
-    /// Sphere.
-    Sphere,
-    /// Torus.
-    Torus,
-    /// The thesis's bird.
-    Bird,
+    /// A built-in shape.
+    Builtin(Shape),
     /// A file given in the path field.
     Custom,
 }
 
 impl ShapeKind {
-    /// The shapes of the thesis's Add Object panel.
-    pub const OBJECT: [ShapeKind; 7] = [
-        Self::Cube,
-        Self::Capsule,
-        Self::Cylinder,
-        Self::Sphere,
-        Self::Torus,
-        Self::Bird,
-        Self::Custom,
-    ];
-    /// The shapes of the Fire panel.
-    pub const PROJECTILE: [ShapeKind; 5] = [
-        Self::Sphere,
-        Self::Cube,
-        Self::Capsule,
-        Self::Cylinder,
-        Self::Custom,
-    ];
+    /// The shapes of the Add Object panel: every built-in shape ([`Shape::ALL`]), then a
+    /// file.
+    pub fn object_options() -> Vec<ShapeKind> {
+        Shape::ALL
+            .iter()
+            .map(|&s| ShapeKind::Builtin(s))
+            .chain([ShapeKind::Custom])
+            .collect()
+    }
 
-    /// Label shown in the UI.
-    pub fn label(self) -> &'static str {
-        match self {
-            Self::Cube => "Cube",
-            Self::Capsule => "Capsule",
-            Self::Cylinder => "Cylinder",
-            Self::Sphere => "Sphere",
-            Self::Torus => "Torus",
-            Self::Bird => "Bird",
-            Self::Custom => "Custom",
-        }
+    /// The shapes of the Fire panel: the built-in shapes with a primitive collider (see
+    /// [`ProjectileShape::primitive`]), then a file.
+    pub fn projectile_options() -> Vec<ShapeKind> {
+        Shape::ALL
+            .iter()
+            .filter(|&&s| ProjectileShape::primitive(s).is_some())
+            .map(|&s| ShapeKind::Builtin(s))
+            .chain([ShapeKind::Custom])
+            .collect()
+    }
+
+    /// Label shown in the UI: the shape's word, capitalised.
+    pub fn label(self) -> String {
+        let word = match self {
+            Self::Builtin(s) => s.name(),
+            Self::Custom => "custom",
+        };
+        let mut chars = word.chars();
+        chars
+            .next()
+            .map(|c| c.to_uppercase().chain(chars).collect())
+            .unwrap_or_default()
     }
 
     /// The kind of an already chosen shape.
     pub fn of(shape: &ShapeChoice) -> Self {
         match shape {
-            ShapeChoice::Cube => Self::Cube,
-            ShapeChoice::Capsule => Self::Capsule,
-            ShapeChoice::Cylinder => Self::Cylinder,
-            ShapeChoice::Sphere => Self::Sphere,
-            ShapeChoice::Torus => Self::Torus,
-            ShapeChoice::Bird => Self::Bird,
+            ShapeChoice::Builtin(s) => Self::Builtin(*s),
             ShapeChoice::Custom(_) => Self::Custom,
         }
     }
@@ -114,12 +103,7 @@ impl ShapeKind {
 
 fn shape_choice(kind: ShapeKind, path: &str, check: MeshCheck<'_>) -> Result<ShapeChoice, String> {
     Ok(match kind {
-        ShapeKind::Cube => ShapeChoice::Cube,
-        ShapeKind::Capsule => ShapeChoice::Capsule,
-        ShapeKind::Cylinder => ShapeChoice::Cylinder,
-        ShapeKind::Sphere => ShapeChoice::Sphere,
-        ShapeKind::Torus => ShapeChoice::Torus,
-        ShapeKind::Bird => ShapeChoice::Bird,
+        ShapeKind::Builtin(s) => ShapeChoice::Builtin(s),
         ShapeKind::Custom => {
             let p = path.trim();
             if p.is_empty() {
@@ -151,17 +135,17 @@ pub struct AddObjectForm {
     /// "Color" R, G, B in `[0, 1]`.
     pub color: [String; 3],
     /// Fracture method.
-    pub method: MethodChoice,
+    pub method: MethodKind,
     /// Voronoi seed pattern.
-    pub pattern: PatternChoice,
+    pub pattern: Pattern,
     /// Material preset.
-    pub material: String,
+    pub material: MaterialPreset,
 }
 
 impl Default for AddObjectForm {
     fn default() -> Self {
         Self {
-            shape: ShapeKind::Cube,
+            shape: ShapeKind::Builtin(Shape::Cube),
             custom_path: String::new(),
             random_vertices: "40".to_owned(),
             // Stone's bond strength: a 1 m stone cube (2.6 t) holds together when it lands.
@@ -170,9 +154,9 @@ impl Default for AddObjectForm {
             center: false,
             last: String::new(),
             color: ["0.8".to_owned(), "0.7".to_owned(), "0.3".to_owned()],
-            method: MethodChoice::Tetra,
-            pattern: PatternChoice::Uniform,
-            material: "stone".to_owned(),
+            method: MethodKind::Tetra,
+            pattern: Pattern::Uniform,
+            material: MaterialPreset::Stone,
         }
     }
 }
@@ -209,15 +193,8 @@ impl AddObjectForm {
         let skip = e.check("skip", parse_count(&self.skip));
         let lifetime = e.check("last", parse_lifetime(&self.last));
         let color = e.check("color", parse_color(&self.color));
-        let material = e.check(
-            "material",
-            if MATERIAL_PRESETS.contains(&self.material.as_str()) {
-                Ok(self.material.clone())
-            } else {
-                Err(format!("unknown material '{}'", self.material))
-            },
-        );
-        if self.method != MethodChoice::Tetra && random_vertices == Some(0) {
+        let material = Some(self.material);
+        if self.method != MethodKind::Tetra && random_vertices == Some(0) {
             e.0.insert(
                 "random_vertices",
                 format!("{} needs at least 1 piece", self.method.name()),
@@ -281,7 +258,7 @@ impl AddObjectForm {
             color: spec.color.map(|c| format!("{c}")),
             method: spec.method,
             pattern: spec.pattern,
-            material: spec.material.clone(),
+            material: spec.material,
         };
         let transform = TransformForm {
             position: spec.position.to_array().map(f),
@@ -314,7 +291,7 @@ impl Default for FireForm {
     fn default() -> Self {
         let d = ProjectileSpec::default();
         Self {
-            shape: ShapeKind::Sphere,
+            shape: ShapeKind::of(&d.shape),
             custom_path: String::new(),
             last: d.lifetime.map(|v| v.to_string()).unwrap_or_default(),
             color: d.color.map(|c| c.to_string()),

@@ -3,7 +3,7 @@
 
 use bevy_egui::egui::{self, Color32, RichText, Ui};
 
-use crate::commands::{BondModelChoice, MATERIAL_PRESETS, MethodChoice, PatternChoice, SimCommand};
+use crate::commands::{BondModel, MaterialPreset, MethodKind, Pattern, SimCommand};
 use crate::sim_bridge::{SimStats, check_custom_mesh};
 use crate::ui::forms::{FieldErrors, ShapeKind};
 use crate::ui::state::{AddObjectPage, UiState};
@@ -107,8 +107,8 @@ fn scene_controls(ui: &mut Ui, s: &mut UiState, stats: &SimStats, out: &mut Vec<
             s.toggle_delete();
         }
         ui.label("Bonds:");
-        for m in BondModelChoice::ALL {
-            let current = s.bond_model.unwrap_or(BondModelChoice::Clusters);
+        for &m in BondModel::ALL {
+            let current = s.bond_model.unwrap_or_default();
             if ui.selectable_label(current == m, m.name()).clicked() && current != m {
                 s.bond_model = Some(m);
                 out.push(SimCommand::SetBondModel(m));
@@ -180,38 +180,43 @@ fn add_object_panel(ui: &mut Ui, s: &mut UiState, out: &mut Vec<SimCommand>) {
         AddObjectPage::Closed => {}
         AddObjectPage::Parameters => {
             let f = &mut s.add;
-            shape_row(ui, &ShapeKind::OBJECT, &mut f.shape, &mut f.custom_path);
+            shape_row(
+                ui,
+                &ShapeKind::object_options(),
+                &mut f.shape,
+                &mut f.custom_path,
+            );
             error_line(ui, &s.add_errors, "shape");
             error_line(ui, &s.add_errors, "object");
             ui.horizontal(|ui| {
                 egui::ComboBox::from_id_salt("method")
                     .selected_text(f.method.name())
                     .show_ui(ui, |ui| {
-                        for m in MethodChoice::ALL {
+                        for &m in MethodKind::ALL {
                             ui.selectable_value(&mut f.method, m, m.name());
                         }
                     });
-                if f.method == MethodChoice::Voronoi {
+                if f.method == MethodKind::Voronoi {
                     egui::ComboBox::from_id_salt("pattern")
                         .selected_text(f.pattern.name())
                         .show_ui(ui, |ui| {
-                            for p in PatternChoice::ALL {
+                            for &p in Pattern::ALL {
                                 ui.selectable_value(&mut f.pattern, p, p.name());
                             }
                         });
                 }
                 egui::ComboBox::from_id_salt("material")
-                    .selected_text(f.material.as_str())
+                    .selected_text(f.material.name())
                     .show_ui(ui, |ui| {
-                        for m in MATERIAL_PRESETS {
-                            ui.selectable_value(&mut f.material, m.to_owned(), m);
+                        for &m in MaterialPreset::ALL {
+                            ui.selectable_value(&mut f.material, m, m.name());
                         }
                     });
             });
             let rv = match f.method {
-                MethodChoice::Tetra => "Random Vertices",
-                MethodChoice::Grid => "Bricks along x",
-                MethodChoice::Voronoi | MethodChoice::Slice => "Pieces",
+                MethodKind::Tetra => "Random Vertices",
+                MethodKind::Grid => "Bricks along x",
+                MethodKind::Voronoi | MethodKind::Slice => "Pieces",
             };
             text_row(
                 ui,
@@ -227,7 +232,7 @@ fn add_object_panel(ui: &mut Ui, s: &mut UiState, out: &mut Vec<SimCommand>) {
                 &s.add_errors,
                 "break_force",
             );
-            if f.method == MethodChoice::Tetra {
+            if f.method == MethodKind::Tetra {
                 text_row(ui, "Skip", &mut f.skip, &s.add_errors, "skip");
                 ui.checkbox(&mut f.center, "Center");
             }
@@ -286,7 +291,12 @@ fn fire_panel(ui: &mut Ui, s: &mut UiState) {
         .default_open(false)
         .show(ui, |ui| {
             let f = &mut s.fire;
-            shape_row(ui, &ShapeKind::PROJECTILE, &mut f.shape, &mut f.custom_path);
+            shape_row(
+                ui,
+                &ShapeKind::projectile_options(),
+                &mut f.shape,
+                &mut f.custom_path,
+            );
             error_line(ui, &s.fire_errors, "shape");
             text_row(ui, "Last (s)", &mut f.last, &s.fire_errors, "last");
             triple_row(ui, "Color", &mut f.color, &s.fire_errors, "color");

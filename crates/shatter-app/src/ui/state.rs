@@ -4,9 +4,7 @@
 use bevy::prelude::Resource;
 use glam::Vec3;
 
-use crate::commands::{
-    BondModelChoice, ForceSpec, ObjectId, ObjectSpec, ProjectileSpec, SimCommand,
-};
+use crate::commands::{BondModel, ForceSpec, ObjectId, ObjectSpec, ProjectileSpec, SimCommand};
 use crate::ui::forms::{
     AddObjectForm, FieldErrors, FireForm, ForceForm, MeshCheck, SceneFileForm, TransformForm,
 };
@@ -67,7 +65,7 @@ pub struct UiState {
     /// Delete toggle.
     pub delete_mode: bool,
     /// Bond model for new objects.
-    pub bond_model: Option<BondModelChoice>,
+    pub bond_model: Option<BondModel>,
     /// Scene file field.
     pub scene_file: SceneFileForm,
     /// Errors of the scene file field.

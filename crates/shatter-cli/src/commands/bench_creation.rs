@@ -19,14 +19,14 @@ use shatter_geom::progress::Progress;
 use shatter_report::plot::{LinePlot, Series};
 use shatter_report::table::{Cell, CsvTable};
 
-use crate::args::ShapeName;
 use crate::commands::fracture::{
-    FractureConfig, MeshSource, MethodConfig, PlacementArg, fracture_estimate, fracture_timed,
-    load_source,
+    FractureConfig, MeshSource, MethodConfig, fracture_estimate, fracture_timed, load_source,
 };
 use crate::context::Context;
 use crate::error::{CliError, ResultExt};
 use crate::output;
+use shatter_geom::fracture::Placement;
+use shatter_geom::shapes::Shape;
 
 /// Arguments of `shatter bench creation`.
 #[derive(Debug, Args)]
@@ -64,8 +64,8 @@ pub struct BenchCreationArgs {
 /// The validated configuration.
 #[derive(Debug, Clone, PartialEq)]
 struct CreationConfig {
-    models: Vec<ShapeName>,
-    placements: Vec<PlacementArg>,
+    models: Vec<Shape>,
+    placements: Vec<Placement>,
     counts: Vec<usize>,
     runs: usize,
     out: PathBuf,
@@ -142,13 +142,6 @@ fn parse_list<T: ValueEnum + PartialEq>(
     Ok(values)
 }
 
-fn placement_name(p: PlacementArg) -> &'static str {
-    match p {
-        PlacementArg::Thesis => "thesis",
-        PlacementArg::Interior => "interior",
-    }
-}
-
 /// One timed creation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Sample {
@@ -190,8 +183,8 @@ impl Summary {
 /// One row of the CSV: a model, a placement and a number of random points.
 #[derive(Debug, Clone, PartialEq)]
 struct Row {
-    model: ShapeName,
-    placement: PlacementArg,
+    model: Shape,
+    placement: Placement,
     random_points: usize,
     runs: usize,
     fragments: f64,
@@ -203,8 +196,8 @@ struct Row {
 
 impl Row {
     fn from_samples(
-        model: ShapeName,
-        placement: PlacementArg,
+        model: Shape,
+        placement: Placement,
         random_points: usize,
         samples: &[Sample],
     ) -> Option<Self> {
@@ -236,7 +229,7 @@ impl Row {
 /// summarises the runs; `tick` is called after each case with its description.
 fn sweep(
     config: &CreationConfig,
-    mut create: impl FnMut(ShapeName, PlacementArg, usize, u64) -> Result<Sample, CliError>,
+    mut create: impl FnMut(Shape, Placement, usize, u64) -> Result<Sample, CliError>,
     mut tick: impl FnMut(&str),
 ) -> Result<Vec<Row>, CliError> {
     let mut rows = Vec::new();
@@ -251,7 +244,7 @@ fn sweep(
                 let row = Row::from_samples(model, placement, count, &samples)
                     .ok_or_else(|| CliError::internal("a case ran no run"))?;
                 rows.push(row);
-                tick(&format!("{model} {} {count}", placement_name(placement)));
+                tick(&format!("{model} {} {count}", Placement::name(placement)));
             }
         }
     }
@@ -284,8 +277,8 @@ fn table(rows: &[Row]) -> Result<CsvTable, CliError> {
             None => [Cell::from(""), Cell::from(""), Cell::from("")],
         };
         let cells = [
-            Cell::from(r.model.as_str()),
-            Cell::from(placement_name(r.placement)),
+            Cell::from(r.model.name()),
+            Cell::from(Placement::name(r.placement)),
             Cell::from(r.random_points),
             Cell::from(r.runs),
             Cell::from(r.fragments),
@@ -364,7 +357,7 @@ fn plots(
     progress: &Progress,
 ) -> Result<Vec<PathBuf>, CliError> {
     let mut written = Vec::new();
-    let select = |m: ShapeName, p: PlacementArg| -> Vec<&Row> {
+    let select = |m: Shape, p: Placement| -> Vec<&Row> {
         rows.iter()
             .filter(|r| r.model == m && r.placement == p)
             .collect()
@@ -382,16 +375,16 @@ fn plots(
             let lines: Vec<Series> = config
                 .models
                 .iter()
-                .map(|&m| series(m.as_str(), &select(m, p), measure))
+                .map(|&m| series(m.name(), &select(m, p), measure))
                 .collect();
             let title = format!(
                 "Creation time ({what}), {} placement, mean of {} runs (band: min–max)",
-                placement_name(p),
+                Placement::name(p),
                 config.runs
             );
             written.extend(write_plot(
                 &config.out,
-                &format!("{prefix}_{}", placement_name(p)),
+                &format!("{prefix}_{}", Placement::name(p)),
                 &lines,
                 &title,
                 progress,
@@ -402,7 +395,7 @@ fn plots(
         let lines: Vec<Series> = config
             .placements
             .iter()
-            .map(|&p| series(placement_name(p), &select(m, p), Measure::Fracture))
+            .map(|&p| series(Placement::name(p), &select(m, p), Measure::Fracture))
             .collect();
         let title = format!(
             "Creation time of the {m} (fracture), mean of {} runs",
@@ -460,7 +453,7 @@ fn build_bodies_ms(fracture: Fracture) -> Result<f64, CliError> {
 /// memory is the largest case's.
 fn creation_estimate(
     config: &CreationConfig,
-    meshes: &[(ShapeName, shatter_geom::model::Model)],
+    meshes: &[(Shape, shatter_geom::model::Model)],
 ) -> Estimate {
     let mut total = Estimate::default();
     for (model, loaded) in meshes {
@@ -505,7 +498,7 @@ pub fn run(args: &BenchCreationArgs, ctx: &Context) -> Result<(), CliError> {
 
     let mut meshes = Vec::new();
     for &model in &config.models {
-        let fracture_config = fracture_config(model, PlacementArg::Thesis, 0, 0);
+        let fracture_config = fracture_config(model, Placement::Thesis, 0, 0);
         let (mesh, _) = load_source(&fracture_config)?;
         meshes.push((model, mesh));
     }
@@ -560,8 +553,8 @@ pub fn run(args: &BenchCreationArgs, ctx: &Context) -> Result<(), CliError> {
 }
 
 fn fracture_config(
-    model: ShapeName,
-    placement: PlacementArg,
+    model: Shape,
+    placement: Placement,
     random_vertices: usize,
     seed: u64,
 ) -> FractureConfig {
@@ -593,8 +586,8 @@ fn print_summary(config: &CreationConfig, rows: &[Row]) {
     for r in rows.iter().filter(|r| picks.contains(&r.random_points)) {
         println!(
             "{:<9} {:<9} {:>7} {:>10.0} {:>10.3} {:>10.3} {:>10.3}",
-            r.model.as_str(),
-            placement_name(r.placement),
+            r.model.name(),
+            Placement::name(r.placement),
             r.random_points,
             r.fragments,
             r.fracture.mean,
@@ -626,11 +619,8 @@ mod tests {
     fn counts_run_from_zero_by_step_up_to_the_maximum() {
         let c = CreationConfig::from_args(&args()).unwrap();
         assert_eq!(c.counts, vec![0, 10, 20]);
-        assert_eq!(c.models, vec![ShapeName::Cube, ShapeName::Bird]);
-        assert_eq!(
-            c.placements,
-            vec![PlacementArg::Thesis, PlacementArg::Interior]
-        );
+        assert_eq!(c.models, vec![Shape::Cube, Shape::Bird]);
+        assert_eq!(c.placements, vec![Placement::Thesis, Placement::Interior]);
     }
 
     #[test]
@@ -695,7 +685,7 @@ mod tests {
         let r = &rows[1];
         assert_eq!(
             (r.model, r.placement, r.random_points),
-            (ShapeName::Cube, PlacementArg::Thesis, 10)
+            (Shape::Cube, Placement::Thesis, 10)
         );
         // Seeds 7, 8, 9.
         assert_eq!(

@@ -10,13 +10,14 @@ use serde::Serialize;
 use shatter_geom::DVec3;
 use shatter_geom::budget::{Estimate, format_count};
 
-use crate::args::ShapeName;
 use crate::commands::fracture::{
-    FractureConfig, MeshSource, MethodConfig, PatternArg, PlacementArg, VoronoiSeeds,
-    fracture_estimate, fracture_timed, load_source,
+    FractureConfig, MeshSource, MethodConfig, VoronoiSeeds, fracture_estimate, fracture_timed,
+    load_source,
 };
 use crate::context::Context;
 use crate::error::{CliError, ResultExt};
+use shatter_geom::fracture::{Pattern, Placement};
+use shatter_geom::shapes::Shape;
 
 /// Arguments of `shatter bench fracture`.
 #[derive(Debug, Args)]
@@ -36,18 +37,18 @@ pub struct BenchFractureArgs {
 /// One benchmark case.
 struct Case {
     name: &'static str,
-    shape: ShapeName,
+    shape: Shape,
     method: MethodConfig,
 }
 
-fn voronoi(count: usize, pattern: PatternArg) -> MethodConfig {
+fn voronoi(count: usize, pattern: Pattern) -> MethodConfig {
     MethodConfig::Voronoi {
         seeds: VoronoiSeeds::Pattern { count, pattern },
         impact: None,
     }
 }
 
-fn tetra(random_vertices: usize, placement: PlacementArg) -> MethodConfig {
+fn tetra(random_vertices: usize, placement: Placement) -> MethodConfig {
     MethodConfig::Tetra {
         random_vertices,
         skip: 0,
@@ -60,47 +61,47 @@ fn cases() -> Vec<Case> {
     vec![
         Case {
             name: "bird voronoi 100",
-            shape: ShapeName::Bird,
-            method: voronoi(100, PatternArg::Uniform),
+            shape: Shape::Bird,
+            method: voronoi(100, Pattern::Uniform),
         },
         Case {
             name: "cube tetra 500 thesis",
-            shape: ShapeName::Cube,
-            method: tetra(500, PlacementArg::Thesis),
+            shape: Shape::Cube,
+            method: tetra(500, Placement::Thesis),
         },
         Case {
             name: "cube tetra 500 interior",
-            shape: ShapeName::Cube,
-            method: tetra(500, PlacementArg::Interior),
+            shape: Shape::Cube,
+            method: tetra(500, Placement::Interior),
         },
         Case {
             name: "bird tetra 200 interior",
-            shape: ShapeName::Bird,
-            method: tetra(200, PlacementArg::Interior),
+            shape: Shape::Bird,
+            method: tetra(200, Placement::Interior),
         },
         Case {
             name: "capsule voronoi 50",
-            shape: ShapeName::Capsule,
-            method: voronoi(50, PatternArg::Uniform),
+            shape: Shape::Capsule,
+            method: voronoi(50, Pattern::Uniform),
         },
         Case {
             name: "cylinder voronoi 50",
-            shape: ShapeName::Cylinder,
-            method: voronoi(50, PatternArg::Uniform),
+            shape: Shape::Cylinder,
+            method: voronoi(50, Pattern::Uniform),
         },
         Case {
             name: "bird voronoi 100 radial",
-            shape: ShapeName::Bird,
-            method: voronoi(100, PatternArg::Radial),
+            shape: Shape::Bird,
+            method: voronoi(100, Pattern::Radial),
         },
         Case {
             name: "bird slice 8",
-            shape: ShapeName::Bird,
+            shape: Shape::Bird,
             method: MethodConfig::Slice { planes: 8 },
         },
         Case {
             name: "cube slice 8",
-            shape: ShapeName::Cube,
+            shape: Shape::Cube,
             method: MethodConfig::Slice { planes: 8 },
         },
     ]
@@ -173,7 +174,7 @@ pub fn run(args: &BenchFractureArgs, ctx: &Context) -> Result<(), CliError> {
         bar.tick(case.name);
         let row = Row {
             case: case.name,
-            shape: case.shape.as_str(),
+            shape: case.shape.name(),
             fragments: warm.fragments.len(),
             bonds: warm.bonds.len(),
             runs: args.runs,

@@ -6,49 +6,17 @@ use std::time::Instant;
 use clap::{ArgGroup, Args, ValueEnum};
 use serde::Serialize;
 use shatter_geom::budget::{Estimate, format_count};
-use shatter_geom::fracture::Fracture;
+use shatter_geom::fracture::{Fracture, MethodKind, Pattern, Placement};
 use shatter_geom::model::Model;
+use shatter_geom::shapes::Shape;
 use shatter_geom::{DVec3, TriMesh};
 
-use crate::args::{MeshFormat, ShapeName, check_writable, parse_vec3, validate_scale};
+use crate::args::{MeshFormat, check_writable, parse_cells, parse_vec3, validate_scale};
 use crate::commands::tetrahedralize::{EstimateReport, check_points_file};
 use crate::context::Context;
 use crate::error::{CliError, ResultExt};
 use crate::points_file::read_points_file;
 use crate::{library, memory};
-
-/// Fracture method.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum MethodArg {
-    /// The thesis: Delaunay tetrahedra of surface vertices plus random points.
-    Tetra,
-    /// Voronoi cells of seed points, clipped exactly to the mesh.
-    Voronoi,
-    /// Random planes slicing the mesh.
-    Slice,
-}
-
-/// Where the tetra method puts its random points.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum PlacementArg {
-    /// Uniform inside the mesh.
-    Interior,
-    /// Exactly the thesis's scheme (fills the convex hull).
-    Thesis,
-}
-
-/// Voronoi seed pattern.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum PatternArg {
-    /// Uniform inside the mesh.
-    Uniform,
-    /// Around a few centres.
-    Clustered,
-    /// Dense near the impact point, coarser outward (glass).
-    Radial,
-    /// Cells stretched along an axis (wood).
-    Splinter,
-}
 
 /// Arguments of `shatter fracture`.
 #[derive(Debug, Args)]
@@ -62,13 +30,17 @@ pub struct FractureArgs {
     pub meshes: Vec<PathBuf>,
     /// A built-in shape instead of a file.
     #[arg(long, value_enum, value_name = "NAME")]
-    pub shape: Option<ShapeName>,
+    pub shape: Option<Shape>,
     /// Scale along x, y and z (each greater than 0), applied before fracturing.
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
     pub scale: Option<DVec3>,
     /// Fracture method.
-    #[arg(long, value_enum, default_value_t = MethodArg::Voronoi)]
-    pub method: MethodArg,
+    #[arg(long, value_enum, default_value_t = MethodKind::Voronoi)]
+    pub method: MethodKind,
+    /// grid: cells along x, y and z of the box (`--shape cube`, sized by --scale)
+    /// [default: 4,4,4].
+    #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_cells)]
+    pub grid: Option<[u32; 3]>,
     /// Number of pieces (voronoi seeds or slice planes) [default: 20 voronoi, 4 slice].
     #[arg(long, value_name = "K")]
     pub pieces: Option<usize>,
@@ -83,10 +55,10 @@ pub struct FractureArgs {
     pub center: bool,
     /// tetra: where random points go [default: interior].
     #[arg(long, value_enum)]
-    pub placement: Option<PlacementArg>,
+    pub placement: Option<Placement>,
     /// voronoi: seed pattern [default: uniform].
     #[arg(long, value_enum)]
-    pub pattern: Option<PatternArg>,
+    pub pattern: Option<Pattern>,
     /// voronoi radial: the impact point [default: the mesh's centroid].
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
     pub impact: Option<DVec3>,
@@ -151,7 +123,7 @@ pub enum MeshSource {
     /// A mesh file.
     File(PathBuf),
     /// A built-in shape.
-    Shape(ShapeName),
+    Shape(Shape),
 }
 
 /// A validated fracture method with its parameters.
@@ -166,7 +138,7 @@ pub enum MethodConfig {
         /// Add the centre point.
         center: bool,
         /// Random point placement.
-        placement: PlacementArg,
+        placement: Placement,
     },
     /// Voronoi cells clipped to the mesh.
     Voronoi {
@@ -180,6 +152,11 @@ pub enum MethodConfig {
         /// Number of planes.
         planes: usize,
     },
+    /// A box cut into a regular grid of boxes (bricks).
+    Grid {
+        /// Cells along x, y and z.
+        cells: [u32; 3],
+    },
 }
 
 /// Voronoi seeds, generated or read from a file.
@@ -190,7 +167,7 @@ pub enum VoronoiSeeds {
         /// Number of seeds.
         count: usize,
         /// Their pattern.
-        pattern: PatternArg,
+        pattern: Pattern,
     },
     /// Given seeds.
     Points(Vec<DVec3>),
@@ -236,18 +213,9 @@ impl FractureConfig {
                 }
             }
             MethodConfig::Slice { planes } => format!("slice, {planes} planes"),
+            MethodConfig::Grid { cells: [x, y, z] } => format!("grid, {x}x{y}x{z} cells"),
         };
         format!("{method}, seed {}", self.seed)
-    }
-}
-
-impl MethodArg {
-    fn as_str(self) -> &'static str {
-        match self {
-            Self::Tetra => "tetra",
-            Self::Voronoi => "voronoi",
-            Self::Slice => "slice",
-        }
     }
 }
 
@@ -275,38 +243,54 @@ impl FractureArgs {
         }
         let scale = validate_scale(self.scale)?;
         let method = self.method;
-        let refuse = |flag: &str, applies_to: &str| {
+        let refuse = |flag: &str, applies_to: MethodKind| {
             CliError::input(format!(
                 "{flag} applies to --method {applies_to}, not --method {}",
-                method.as_str()
+                method.name()
             ))
         };
-        if method != MethodArg::Tetra {
+        if method != MethodKind::Tetra {
             if self.random_vertices.is_some() {
-                return Err(refuse("--random-vertices", "tetra"));
+                return Err(refuse("--random-vertices", MethodKind::Tetra));
             }
             if self.skip.is_some() {
-                return Err(refuse("--skip", "tetra"));
+                return Err(refuse("--skip", MethodKind::Tetra));
             }
             if self.center {
-                return Err(refuse("--center", "tetra"));
+                return Err(refuse("--center", MethodKind::Tetra));
             }
             if self.placement.is_some() {
-                return Err(refuse("--placement", "tetra"));
+                return Err(refuse("--placement", MethodKind::Tetra));
             }
         }
-        if method != MethodArg::Voronoi {
+        if method != MethodKind::Voronoi {
             if self.pattern.is_some() {
-                return Err(refuse("--pattern", "voronoi"));
+                return Err(refuse("--pattern", MethodKind::Voronoi));
             }
             if self.impact.is_some() {
-                return Err(refuse("--impact", "voronoi"));
+                return Err(refuse("--impact", MethodKind::Voronoi));
             }
             if self.seeds_file.is_some() {
-                return Err(refuse("--seeds-file", "voronoi"));
+                return Err(refuse("--seeds-file", MethodKind::Voronoi));
             }
         }
-        if method == MethodArg::Tetra && self.pieces.is_some() {
+        if method != MethodKind::Grid && self.grid.is_some() {
+            return Err(refuse("--grid", MethodKind::Grid));
+        }
+        if method == MethodKind::Grid {
+            if self.pieces.is_some() {
+                return Err(CliError::input(
+                    "--pieces applies to --method voronoi and slice; \
+                     --method grid makes one fragment per cell (see --grid)",
+                ));
+            }
+            if !matches!(source, MeshSource::Shape(Shape::Cube)) {
+                return Err(CliError::input(
+                    "--method grid cuts a box: use --shape cube (sized with --scale)",
+                ));
+            }
+        }
+        if method == MethodKind::Tetra && self.pieces.is_some() {
             return Err(CliError::input(
                 "--pieces applies to --method voronoi and slice; \
                  --method tetra makes one fragment per tetrahedron (see --random-vertices)",
@@ -315,17 +299,17 @@ impl FractureArgs {
         if self.pieces == Some(0) {
             return Err(CliError::input("--pieces 0: at least 1 piece is needed"));
         }
-        if self.impact.is_some() && self.pattern != Some(PatternArg::Radial) {
+        if self.impact.is_some() && self.pattern != Some(Pattern::Radial) {
             return Err(CliError::input("--impact applies to --pattern radial only"));
         }
         let method = match method {
-            MethodArg::Tetra => MethodConfig::Tetra {
+            MethodKind::Tetra => MethodConfig::Tetra {
                 random_vertices: self.random_vertices.unwrap_or(50),
                 skip: self.skip.unwrap_or(0),
                 center: self.center,
-                placement: self.placement.unwrap_or(PlacementArg::Interior),
+                placement: self.placement.unwrap_or(Placement::Interior),
             },
-            MethodArg::Voronoi => {
+            MethodKind::Voronoi => {
                 let seeds = match &self.seeds_file {
                     Some(path) => {
                         check_points_file(ctx, "--seeds-file", path)?;
@@ -333,7 +317,7 @@ impl FractureArgs {
                     }
                     None => VoronoiSeeds::Pattern {
                         count: self.pieces.unwrap_or(20),
-                        pattern: self.pattern.unwrap_or(PatternArg::Uniform),
+                        pattern: self.pattern.unwrap_or(Pattern::Uniform),
                     },
                 };
                 MethodConfig::Voronoi {
@@ -341,8 +325,11 @@ impl FractureArgs {
                     impact: self.impact,
                 }
             }
-            MethodArg::Slice => MethodConfig::Slice {
+            MethodKind::Slice => MethodConfig::Slice {
                 planes: self.pieces.unwrap_or(4),
+            },
+            MethodKind::Grid => MethodConfig::Grid {
+                cells: self.grid.unwrap_or([4, 4, 4]),
             },
         };
         let out = match &self.out {
@@ -482,6 +469,24 @@ pub fn fracture_estimate(mesh: &TriMesh, config: &FractureConfig) -> (String, Es
             ),
             Estimate::slice_fracture(*planes as u64, triangles).with_process(),
         ),
+        MethodConfig::Grid { cells } => {
+            use shatter_sim::scene::budget::{GRID_BYTES_PER_BRICK, GRID_SECONDS_PER_BRICK};
+            let bricks: f64 = cells.iter().map(|&c| f64::from(c)).product();
+            (
+                format!(
+                    "--grid {},{},{}: {} bricks",
+                    cells[0],
+                    cells[1],
+                    cells[2],
+                    format_count(bricks as u64)
+                ),
+                Estimate {
+                    bytes: bricks * GRID_BYTES_PER_BRICK,
+                    seconds: bricks * GRID_SECONDS_PER_BRICK,
+                }
+                .with_process(),
+            )
+        }
     }
 }
 

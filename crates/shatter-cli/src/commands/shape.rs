@@ -5,7 +5,9 @@ use std::path::PathBuf;
 use clap::Args;
 use shatter_geom::DVec3;
 
-use crate::args::{MeshFormat, ShapeName, check_writable, parse_vec3, validate_scale};
+use shatter_geom::shapes::Shape;
+
+use crate::args::{MeshFormat, check_writable, parse_vec3, validate_scale};
 use crate::context::Context;
 use crate::error::CliError;
 use crate::library;
@@ -15,7 +17,7 @@ use crate::library;
 pub struct ShapeArgs {
     /// The shape.
     #[arg(value_enum, value_name = "NAME")]
-    pub name: ShapeName,
+    pub name: Shape,
     /// Output file, `.obj` or `.glb`.
     #[arg(long, value_name = "FILE.obj|FILE.glb")]
     pub out: PathBuf,
@@ -25,7 +27,7 @@ pub struct ShapeArgs {
 }
 
 struct Config {
-    name: ShapeName,
+    name: Shape,
     out: PathBuf,
     format: MeshFormat,
     scale: DVec3,

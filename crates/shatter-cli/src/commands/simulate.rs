@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
-use clap::{Args, ValueEnum};
+use clap::Args;
 use shatter_geom::TriMesh;
 use shatter_report::export::{FragmentMesh, Pose as KeyPose};
 use shatter_report::record::{RunRecorder, StepStats};
@@ -18,24 +18,6 @@ use crate::args::check_writable;
 use crate::context::Context;
 use crate::error::{CliError, ResultExt};
 use crate::output;
-
-/// Bond model on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum BondsArg {
-    /// One body per fragment, a breakable fixed joint per bond (the thesis).
-    Joints,
-    /// Connected fragments as one body, a breakable bond graph.
-    Clusters,
-}
-
-impl From<BondsArg> for BondModel {
-    fn from(b: BondsArg) -> BondModel {
-        match b {
-            BondsArg::Joints => BondModel::Joints,
-            BondsArg::Clusters => BondModel::Clusters,
-        }
-    }
-}
 
 /// Keyframes per simulated second of `--export` when `--fps` is not given.
 pub const DEFAULT_FPS: f64 = 30.0;
@@ -54,7 +36,7 @@ pub struct SimulateArgs {
     pub steps: Option<u64>,
     /// Override every object's bond model.
     #[arg(long, value_enum)]
-    pub bonds: Option<BondsArg>,
+    pub bonds: Option<BondModel>,
     /// Print one JSON object.
     #[arg(long)]
     pub json: bool,
@@ -217,7 +199,7 @@ pub fn run(args: &SimulateArgs, ctx: &Context) -> Result<SimulateReport, CliErro
         .map_err(|e| ctx.refusal(&format!("{scene_name}: {e}")))?;
     ctx.progress.check()?;
     let mut world = scene
-        .build(args.bonds.map(BondModel::from))
+        .build(args.bonds)
         .map_err(|e| CliError::input(format!("{scene_name}: {e}")))?;
     ctx.progress.check()?;
     world.start();

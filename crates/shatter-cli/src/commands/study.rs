@@ -31,14 +31,15 @@ use shatter_sim::{
     WorldSettings,
 };
 
-use crate::args::ShapeName;
 use crate::commands::fracture::{
-    FractureConfig, MeshSource, MethodConfig, PatternArg, PlacementArg, VoronoiSeeds,
-    fracture_estimate, fracture_timed, load_source,
+    FractureConfig, MeshSource, MethodConfig, VoronoiSeeds, fracture_estimate, fracture_timed,
+    load_source,
 };
 use crate::context::Context;
 use crate::error::{CliError, ResultExt};
 use crate::output;
+use shatter_geom::fracture::{MethodKind, Pattern, Placement};
+use shatter_geom::shapes::Shape;
 
 /// Arguments of `shatter study`.
 #[derive(Debug, Args)]
@@ -135,30 +136,19 @@ impl Study {
     }
 }
 
-/// A fracture method of the study.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum StudyMethod {
-    Tetra,
-    Voronoi,
-    Slice,
-}
+/// The fracture methods the method study compares.
+const STUDY_METHODS: [MethodKind; 3] = [MethodKind::Tetra, MethodKind::Voronoi, MethodKind::Slice];
 
-impl StudyMethod {
-    const ALL: [StudyMethod; 3] = [Self::Tetra, Self::Voronoi, Self::Slice];
-
-    fn name(self) -> &'static str {
-        match self {
-            Self::Tetra => "tetra",
-            Self::Voronoi => "voronoi",
-            Self::Slice => "slice",
-        }
-    }
+/// Grid cells along each axis for about `pieces` bricks (a grid case is not part of the
+/// method study; this keeps every method usable in a case).
+fn grid_side(pieces: usize) -> u32 {
+    ((pieces as f64).cbrt().round() as u32).clamp(1, 1000)
 }
 
 /// One simulated case.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Case {
-    method: StudyMethod,
+    method: MethodKind,
     bond_model: BondModel,
     break_force: f64,
     speed: f64,
@@ -210,11 +200,9 @@ impl StudyConfig {
         }
         let mut bond_models = Vec::new();
         for name in a.bonds.iter().map(|s| s.trim()).filter(|s| !s.is_empty()) {
-            let model = BondModel::from_name(name).ok_or_else(|| {
-                CliError::input(format!(
-                    "--bonds: unknown bond model '{name}' (expected joints or clusters)"
-                ))
-            })?;
+            let model: BondModel = name
+                .parse()
+                .map_err(|e| CliError::input(format!("--bonds: {e}")))?;
             if !bond_models.contains(&model) {
                 bond_models.push(model);
             }
@@ -253,7 +241,7 @@ impl StudyConfig {
             studies,
             bond_models: bond_models.clone(),
             baseline: Case {
-                method: StudyMethod::Tetra,
+                method: MethodKind::Tetra,
                 bond_model: bond_models[0],
                 break_force: a.break_force,
                 speed: a.speed,
@@ -308,7 +296,7 @@ impl StudyConfig {
                     }
                 }
                 Study::Method => {
-                    for method in StudyMethod::ALL {
+                    for method in STUDY_METHODS {
                         let line = format!("{} ({})", method.name(), model.name());
                         for &v in &self.speeds {
                             let case = Case {
@@ -447,25 +435,28 @@ fn released_fragments(fragments: usize, bonds: &[(u32, u32)], broken: &[bool]) -
 /// The fracture configuration of `case`: the standard cube cut by its method.
 fn case_config(case: &Case) -> FractureConfig {
     let method = match case.method {
-        StudyMethod::Tetra => MethodConfig::Tetra {
+        MethodKind::Tetra => MethodConfig::Tetra {
             random_vertices: case.random_vertices,
             skip: 0,
             center: false,
-            placement: PlacementArg::Interior,
+            placement: Placement::Interior,
         },
-        StudyMethod::Voronoi => MethodConfig::Voronoi {
+        MethodKind::Voronoi => MethodConfig::Voronoi {
             seeds: VoronoiSeeds::Pattern {
                 count: case.pieces,
-                pattern: PatternArg::Uniform,
+                pattern: Pattern::Uniform,
             },
             impact: None,
         },
-        StudyMethod::Slice => MethodConfig::Slice {
+        MethodKind::Slice => MethodConfig::Slice {
             planes: case.planes,
+        },
+        MethodKind::Grid => MethodConfig::Grid {
+            cells: [grid_side(case.pieces); 3],
         },
     };
     FractureConfig {
-        source: MeshSource::Shape(ShapeName::Cube),
+        source: MeshSource::Shape(Shape::Cube),
         scale: DVec3::ONE,
         method,
         seed: case.seed,
@@ -512,7 +503,7 @@ fn study_estimate(config: &StudyConfig) -> Result<(Estimate, Estimate), CliError
 }
 
 fn library_cube() -> Result<shatter_geom::TriMesh, CliError> {
-    crate::library::builtin_shape(ShapeName::Cube)
+    crate::library::builtin_shape(Shape::Cube)
 }
 
 /// Fragments a case is expected to make.
@@ -520,9 +511,10 @@ fn fracture_fragments(case: &Case) -> f64 {
     use shatter_geom::budget::{TETRAHEDRA_PER_POINT, fragments_at_most, slice_pieces};
     fragments_at_most(match case.method {
         // The cube's 8 corners (24 split vertices weld to 8) and the random points.
-        StudyMethod::Tetra => (8 + case.random_vertices) as f64 * TETRAHEDRA_PER_POINT,
-        StudyMethod::Voronoi => case.pieces as f64,
-        StudyMethod::Slice => slice_pieces(case.planes as u64),
+        MethodKind::Tetra => (8 + case.random_vertices) as f64 * TETRAHEDRA_PER_POINT,
+        MethodKind::Voronoi => case.pieces as f64,
+        MethodKind::Slice => slice_pieces(case.planes as u64),
+        MethodKind::Grid => f64::from(grid_side(case.pieces)).powi(3),
     })
 }
 
@@ -814,7 +806,7 @@ mod tests {
             ),
             (
                 |a| a.bonds = vec!["glue".into()],
-                "--bonds: unknown bond model 'glue'",
+                "--bonds: unknown bond model `glue` (expected one of: clusters, joints)",
             ),
             (|a| a.runs = 0, "--runs must be at least 1"),
             (|a| a.seconds = -1.0, "--seconds must be a positive number"),
@@ -841,13 +833,13 @@ mod tests {
         for (line, x, case) in &speed {
             assert_eq!(case.speed, *x);
             assert_eq!(case.break_force, 1000.0);
-            assert_eq!(case.method, StudyMethod::Tetra);
+            assert_eq!(case.method, MethodKind::Tetra);
             assert_eq!(line, case.bond_model.name());
         }
         let method = c.cases(Study::Method);
         assert_eq!(method.len(), 2 * 3 * 3);
         assert!(method.iter().any(|(l, _, c)| l == "voronoi (clusters)"
-            && c.method == StudyMethod::Voronoi
+            && c.method == MethodKind::Voronoi
             && c.bond_model == BondModel::Clusters));
     }
 

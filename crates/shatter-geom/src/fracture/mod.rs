@@ -32,5 +32,5 @@ pub use check::{InvalidFracture, VOLUME_TOLERANCE};
 pub use entry::{fracture, fracture_model};
 pub use methods::tetra::{SLIVER_QUALITY, SLIVER_VOLUME_FRACTION};
 pub use normalize::ANISOTROPY;
-pub use params::{FractureError, FractureParams, Method, Pattern, Placement};
+pub use params::{FractureError, FractureParams, Method, MethodKind, Pattern, Placement};
 pub use types::{Bond, Fracture, Fragment};

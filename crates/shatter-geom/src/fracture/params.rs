@@ -6,31 +6,54 @@ use crate::delaunay::DelaunayError;
 use crate::mesh::MeshError;
 use crate::model::ModelError;
 
-/// How the random points of the [`Method::Tetra`] method are placed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Placement {
-    /// Uniform inside the mesh (rejection sampling with the winding number).
-    #[default]
-    Interior,
-    /// The thesis's scheme: pick a random point `p` of the growing list, draw
-    /// `d = uniform(0, |p − c|)` and add `c + unit(c − p)·d` (`c` = centre of mass).
-    /// A point outside the mesh (possible for concave meshes, e.g. a torus, whose
-    /// centre is in the hole) is redrawn.
-    Thesis,
+crate::vocabulary! {
+    /// How the random points of the [`Method::Tetra`] method are placed.
+    pub enum Placement: "placement", default Interior {
+        /// Uniform inside the mesh (rejection sampling with the winding number).
+        Interior = "interior",
+        /// The thesis's scheme: pick a random point `p` of the growing list, draw
+        /// `d = uniform(0, |p − c|)` and add `c + unit(c − p)·d` (`c` = centre of mass).
+        /// A point outside the mesh (possible for concave meshes, e.g. a torus, whose
+        /// centre is in the hole) is redrawn.
+        Thesis = "thesis",
+    }
 }
 
-/// Seed distribution of the [`Method::Voronoi`] method.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Pattern {
-    /// Uniform inside the mesh.
-    #[default]
-    Uniform,
-    /// Gaussian clusters around a few random centres inside the mesh.
-    Clustered,
-    /// Dense near the impact point and coarser outward (glass).
-    Radial,
-    /// Cells stretched along the mesh's longest axis (wood).
-    Splinter,
+crate::vocabulary! {
+    /// Seed distribution of the [`Method::Voronoi`] method.
+    pub enum Pattern: "pattern", default Uniform {
+        /// Uniform inside the mesh.
+        Uniform = "uniform",
+        /// Gaussian clusters around a few random centres inside the mesh.
+        Clustered = "clustered",
+        /// Dense near the impact point and coarser outward (glass).
+        Radial = "radial",
+        /// Cells stretched along the mesh's longest axis (wood).
+        Splinter = "splinter",
+    }
+}
+
+crate::vocabulary! {
+    /// The name of a fracture method, without its parameters: the word of scene files,
+    /// the CLI's `--method` and the app's panels. [`Method`] holds the parameters of the
+    /// first three; [`MethodKind::Grid`] (box-shaped objects cut into a brick grid) is
+    /// built by `shatter_sim` and has no [`Method`].
+    ///
+    /// ```
+    /// use shatter_geom::fracture::{Method, MethodKind};
+    /// assert_eq!(Method::default().kind(), MethodKind::Voronoi);
+    /// assert_eq!(MethodKind::NAMES, ["tetra", "voronoi", "slice", "grid"]);
+    /// ```
+    pub enum MethodKind: "method" {
+        /// The thesis: Delaunay tetrahedra of surface vertices plus random points.
+        Tetra = "tetra",
+        /// Voronoi cells of seed points, clipped exactly to the mesh.
+        Voronoi = "voronoi",
+        /// Random planes slicing the mesh.
+        Slice = "slice",
+        /// A regular grid of boxes (bricks); only for box-shaped objects.
+        Grid = "grid",
+    }
 }
 
 /// A fracture method.
@@ -66,6 +89,17 @@ pub enum Method {
         /// Explicit planes as `(point, normal)`.
         planes: Option<Vec<(DVec3, DVec3)>>,
     },
+}
+
+impl Method {
+    /// The method's name.
+    pub fn kind(&self) -> MethodKind {
+        match self {
+            Method::Tetra { .. } => MethodKind::Tetra,
+            Method::Voronoi { .. } => MethodKind::Voronoi,
+            Method::Slice { .. } => MethodKind::Slice,
+        }
+    }
 }
 
 impl Default for Method {

@@ -26,11 +26,49 @@ pub use revolved::{sphere, torus};
 
 use crate::TriMesh;
 
-/// Names accepted by [`by_name`].
-pub const NAMES: [&str; 6] = ["cube", "capsule", "cylinder", "sphere", "torus", "bird"];
+crate::vocabulary! {
+    /// A built-in shape.
+    ///
+    /// ```
+    /// use shatter_geom::shapes::Shape;
+    /// let cube: Shape = "cube".parse().expect("a shape");
+    /// assert_eq!(cube.mesh().positions.len(), 24);
+    /// ```
+    pub enum Shape: "shape" {
+        /// Unity's cube: 24 vertices (8 corners split per face), side 1.
+        Cube = "cube",
+        /// Unity's capsule: 550 vertices.
+        Capsule = "capsule",
+        /// Unity's cylinder: 88 vertices.
+        Cylinder = "cylinder",
+        /// A UV sphere (radius 0.5).
+        Sphere = "sphere",
+        /// A torus (not simply connected).
+        Torus = "torus",
+        /// The bundled concave low-poly bird (about 958 vertices, 1394 triangles).
+        Bird = "bird",
+    }
+}
 
-/// A built-in shape by name, with default parameters: `cube`, `capsule`, `cylinder`,
-/// `sphere` (radius 0.5, 24 × 16), `torus` (radii 0.5 and 0.2, 32 × 16) or `bird`.
+impl Shape {
+    /// The shape's mesh, with default parameters: `sphere` radius 0.5, 24 × 16; `torus`
+    /// radii 0.5 and 0.2, 32 × 16.
+    pub fn mesh(self) -> TriMesh {
+        match self {
+            Shape::Cube => cube(),
+            Shape::Capsule => capsule(),
+            Shape::Cylinder => cylinder(),
+            Shape::Sphere => sphere(24, 16),
+            Shape::Torus => torus(0.5, 0.2, 32, 16),
+            Shape::Bird => bird(),
+        }
+    }
+}
+
+/// Names accepted by [`by_name`] (the words of [`Shape`]).
+pub const NAMES: &[&str] = Shape::NAMES;
+
+/// A built-in shape by name, with default parameters (see [`Shape::mesh`]).
 ///
 /// ```
 /// use shatter_geom::shapes;
@@ -38,13 +76,5 @@ pub const NAMES: [&str; 6] = ["cube", "capsule", "cylinder", "sphere", "torus", 
 /// assert!(shapes::by_name("teapot").is_none());
 /// ```
 pub fn by_name(name: &str) -> Option<TriMesh> {
-    match name {
-        "cube" => Some(cube()),
-        "capsule" => Some(capsule()),
-        "cylinder" => Some(cylinder()),
-        "sphere" => Some(sphere(24, 16)),
-        "torus" => Some(torus(0.5, 0.2, 32, 16)),
-        "bird" => Some(bird()),
-        _ => None,
-    }
+    name.parse::<Shape>().ok().map(Shape::mesh)
 }

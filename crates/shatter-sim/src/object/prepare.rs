@@ -6,10 +6,11 @@ use std::sync::Arc;
 use glam::Vec3;
 use shatter_geom::fracture::{Bond, Fracture, Fragment};
 use shatter_geom::model::Corners;
+use shatter_geom::shapes::Shape;
 use shatter_geom::{DMat3, DVec3, TriMesh};
 
 use crate::error::SimError;
-use crate::material::{FractureMethod, Pattern};
+use crate::material::{MethodKind, Pattern};
 use crate::object::spec::{FractureParams, FractureSource, ObjectSpec};
 use crate::testing::box_grid_fracture_with_voids;
 
@@ -32,13 +33,13 @@ pub struct Prepared {
 pub fn resolve_fracture(spec: &ObjectSpec, key: &str) -> Result<Arc<Fracture>, SimError> {
     match &spec.source {
         FractureSource::Prebuilt(f) => Ok(f.clone()),
-        FractureSource::Shape { name, params } => {
+        FractureSource::Shape { shape, params } => {
             let method = params.method.unwrap_or(spec.material.method);
-            if method == FractureMethod::Grid {
-                if name != "cube" {
+            if method == MethodKind::Grid {
+                if *shape != Shape::Cube {
                     return Err(SimError::invalid(
                         format!("{key}.method"),
-                        format!("the grid method needs shape = \"cube\", got `{name}`"),
+                        format!("the grid method needs shape = \"cube\", got `{shape}`"),
                     ));
                 }
                 return Ok(Arc::new(box_grid_fracture_with_voids(
@@ -48,61 +49,45 @@ pub fn resolve_fracture(spec: &ObjectSpec, key: &str) -> Result<Arc<Fracture>, S
                 )));
             }
             let pattern = params.pattern.unwrap_or(spec.material.pattern);
-            geom_fracture(name, params, method, pattern, key)
+            geom_fracture(&shape.mesh(), params, method, pattern, key)
         }
         FractureSource::MeshFile { path, params } => {
             let method = params.method.unwrap_or(spec.material.method);
             let pattern = params.pattern.unwrap_or(spec.material.pattern);
-            geom_fracture(path, params, method, pattern, key)
+            let mesh = shatter_geom::io::load_mesh(path)
+                .map_err(|e| crate::scene::load::mesh_error(path, &e))?;
+            geom_fracture(&mesh, params, method, pattern, key)
         }
     }
 }
 
-/// Runs `shatter_geom::fracture` (tetra, voronoi, slice) on a built-in shape or a mesh file.
+/// Runs `shatter_geom::fracture` (tetra, voronoi, slice) on a mesh.
 fn geom_fracture(
-    what: &str,
+    mesh: &TriMesh,
     params: &FractureParams,
-    method: FractureMethod,
+    method: MethodKind,
     pattern: Pattern,
     key: &str,
 ) -> Result<Arc<Fracture>, SimError> {
     use shatter_geom::fracture as geom;
-    let is_file = what.contains('.') || what.contains('/');
-    let mesh = if is_file {
-        shatter_geom::io::load_mesh(what).map_err(|e| crate::scene::load::mesh_error(what, &e))?
-    } else {
-        shatter_geom::shapes::by_name(what).ok_or_else(|| SimError::UnknownShape {
-            key: format!("{key}.shape"),
-            name: what.to_string(),
-        })?
-    };
     let method = match method {
-        FractureMethod::Tetra => geom::Method::Tetra {
+        MethodKind::Tetra => geom::Method::Tetra {
             random_vertices: params.random_vertices as usize,
             skip: params.skip as usize,
             center: params.center,
-            placement: if params.thesis_placement {
-                geom::Placement::Thesis
-            } else {
-                geom::Placement::Interior
-            },
+            placement: params.placement,
         },
-        FractureMethod::Voronoi => geom::Method::Voronoi {
+        MethodKind::Voronoi => geom::Method::Voronoi {
             pieces: params.pieces as usize,
-            pattern: match pattern {
-                Pattern::Uniform => geom::Pattern::Uniform,
-                Pattern::Clustered => geom::Pattern::Clustered,
-                Pattern::Radial => geom::Pattern::Radial,
-                Pattern::Splinter => geom::Pattern::Splinter,
-            },
+            pattern,
             impact: None,
             seeds: None,
         },
-        FractureMethod::Slice => geom::Method::Slice {
+        MethodKind::Slice => geom::Method::Slice {
             pieces: params.pieces as usize,
             planes: None,
         },
-        FractureMethod::Grid => {
+        MethodKind::Grid => {
             return Err(SimError::invalid(
                 format!("{key}.method"),
                 "the grid method needs shape = \"cube\"",
@@ -110,7 +95,7 @@ fn geom_fracture(
         }
     };
     let fracture = geom::fracture(
-        &mesh,
+        mesh,
         &geom::FractureParams {
             method,
             seed: params.seed,

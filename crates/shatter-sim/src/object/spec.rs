@@ -3,43 +3,30 @@
 use std::sync::Arc;
 
 use glam::{Quat, Vec3};
-use shatter_geom::fracture::Fracture;
+use shatter_geom::fracture::{Fracture, Placement};
+use shatter_geom::shapes::Shape;
 use shatter_geom::{DVec3, TriMesh, shapes};
 
 use crate::error::SimError;
-use crate::material::{FractureMethod, Material, Pattern};
+use crate::material::{Material, MethodKind, Pattern};
 
-/// How the fragments of a breakable object hold together.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum BondModel {
-    /// The thesis: one rigid body per fragment and a breakable fixed joint per bond.
+shatter_geom::vocabulary! {
+    /// How the fragments of a breakable object hold together.
     ///
-    /// A joint breaks when the force it applied during the step, `|linear impulse| /
-    /// substep dt`, exceeds the object's break force.
-    Joints,
-    /// Connected fragments form one rigid body with a compound collider. Contact forces and
-    /// explosions load the bonds; a bond whose load in a step exceeds the break force
-    /// breaks and the body splits into its connected components.
-    #[default]
-    Clusters,
-}
-
-impl BondModel {
-    /// Parses `joints` or `clusters`.
-    pub fn from_name(name: &str) -> Option<BondModel> {
-        match name {
-            "joints" => Some(BondModel::Joints),
-            "clusters" => Some(BondModel::Clusters),
-            _ => None,
-        }
-    }
-
-    /// The model's name, as parsed by [`BondModel::from_name`].
-    pub fn name(self) -> &'static str {
-        match self {
-            BondModel::Joints => "joints",
-            BondModel::Clusters => "clusters",
-        }
+    /// ```
+    /// use shatter_sim::BondModel;
+    /// assert_eq!("joints".parse(), Ok(BondModel::Joints));
+    /// assert_eq!(BondModel::default().to_string(), "clusters");
+    /// ```
+    pub enum BondModel: "bond model", default Clusters {
+        /// Connected fragments form one rigid body with a compound collider. Contact forces
+        /// and explosions load the bonds; a bond whose load in a step exceeds the break force
+        /// breaks and the body splits into its connected components.
+        Clusters = "clusters",
+        /// The thesis: one rigid body per fragment and a breakable fixed joint per bond. A
+        /// joint breaks when the force it applied during the step, `|linear impulse| /
+        /// substep dt`, exceeds the object's break force.
+        Joints = "joints",
     }
 }
 
@@ -48,7 +35,7 @@ impl BondModel {
 #[derive(Debug, Clone, PartialEq)]
 pub struct FractureParams {
     /// Method; `None` uses the material's default.
-    pub method: Option<FractureMethod>,
+    pub method: Option<MethodKind>,
     /// Voronoi seed pattern; `None` uses the material's default.
     pub pattern: Option<Pattern>,
     /// Number of pieces (Voronoi cells, slices).
@@ -59,12 +46,11 @@ pub struct FractureParams {
     pub skip: u32,
     /// The thesis's "Center": also add the centre point.
     pub center: bool,
-    /// Tetra only: place random points with the thesis's scheme instead of uniformly
-    /// inside the mesh.
-    pub thesis_placement: bool,
+    /// Tetra only: where the random points go.
+    pub placement: Placement,
     /// Random seed.
     pub seed: u64,
-    /// Grid cells for [`FractureMethod::Grid`].
+    /// Grid cells for [`MethodKind::Grid`].
     pub grid: [u32; 3],
     /// Boxes of grid cells left out, `[x0, y0, z0, x1, y1, z1]` (from cell `x0` up to but
     /// not including `x1`, ...): a bridge is a box with the space under its span left out.
@@ -80,7 +66,7 @@ impl Default for FractureParams {
             random_vertices: 50,
             skip: 0,
             center: false,
-            thesis_placement: false,
+            placement: Placement::Interior,
             seed: 1,
             grid: [4, 4, 4],
             grid_voids: Vec::new(),
@@ -93,11 +79,11 @@ impl Default for FractureParams {
 pub enum FractureSource {
     /// An already fractured object (in its own frame, before scaling).
     Prebuilt(Arc<Fracture>),
-    /// A built-in shape (`cube`, `capsule`, `cylinder`, `sphere`, `torus`, `bird`) fractured
-    /// with `params`. A `cube` with [`FractureMethod::Grid`] is cut into a brick grid.
+    /// A built-in shape fractured with `params`. A `cube` with [`MethodKind::Grid`] is cut
+    /// into a brick grid.
     Shape {
-        /// Shape name.
-        name: String,
+        /// The shape.
+        shape: Shape,
         /// Fracture parameters.
         params: FractureParams,
     },
@@ -279,14 +265,32 @@ impl ProjectileShape {
         }
     }
 
+    /// The primitive projectile of a built-in shape: a cube, sphere, capsule or cylinder
+    /// (a torus or the bird has no primitive collider: `None`; use
+    /// [`ProjectileShape::Custom`] with its points).
+    pub fn primitive(shape: Shape) -> Option<ProjectileShape> {
+        match shape {
+            Shape::Cube => Some(ProjectileShape::Cube),
+            Shape::Sphere => Some(ProjectileShape::Sphere),
+            Shape::Capsule => Some(ProjectileShape::Capsule),
+            Shape::Cylinder => Some(ProjectileShape::Cylinder),
+            Shape::Torus | Shape::Bird => None,
+        }
+    }
+
     /// Parses `cube`, `sphere`, `capsule`, `cylinder` (custom meshes come with points).
     pub fn from_name(name: &str) -> Option<ProjectileShape> {
-        match name {
-            "cube" => Some(ProjectileShape::Cube),
-            "sphere" => Some(ProjectileShape::Sphere),
-            "capsule" => Some(ProjectileShape::Capsule),
-            "cylinder" => Some(ProjectileShape::Cylinder),
-            _ => None,
+        name.parse().ok().and_then(ProjectileShape::primitive)
+    }
+
+    /// The built-in shape this projectile is, if any (`None` for a custom one).
+    pub fn shape(&self) -> Option<Shape> {
+        match self {
+            ProjectileShape::Cube => Some(Shape::Cube),
+            ProjectileShape::Sphere => Some(Shape::Sphere),
+            ProjectileShape::Capsule => Some(Shape::Capsule),
+            ProjectileShape::Cylinder => Some(Shape::Cylinder),
+            ProjectileShape::Custom(_) => None,
         }
     }
 }

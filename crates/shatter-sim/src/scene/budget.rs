@@ -30,7 +30,7 @@
 
 use shatter_geom::budget::{BudgetError, Estimate, Limits, format_count, fragments_at_most};
 
-use crate::material::FractureMethod;
+use crate::material::MethodKind;
 use crate::object::{BondModel, FractureSource, ObjectSpec};
 use crate::scene::Scene;
 
@@ -115,7 +115,7 @@ pub fn bodies_estimate(fragments: f64, model: BondModel) -> Estimate {
 fn mesh_size(source: &FractureSource) -> (u64, u64) {
     let mesh = match source {
         FractureSource::Prebuilt(_) => None,
-        FractureSource::Shape { name, .. } => shatter_geom::shapes::by_name(name),
+        FractureSource::Shape { shape, .. } => Some(shape.mesh()),
         FractureSource::MeshFile { path, .. } => shatter_geom::io::load_mesh(path).ok(),
     };
     mesh.map_or((0, 0), |m| {
@@ -141,13 +141,13 @@ pub fn object_estimate(key: &str, spec: &ObjectSpec, world_model: BondModel) -> 
         FractureSource::Shape { params, .. } | FractureSource::MeshFile { params, .. } => params,
     };
     let method = params.method.unwrap_or(spec.material.method);
-    let (vertices, triangles) = if method == FractureMethod::Grid {
+    let (vertices, triangles) = if method == MethodKind::Grid {
         (0, 0)
     } else {
         mesh_size(&spec.source)
     };
     let (what, fragments, fracture) = match method {
-        FractureMethod::Grid => {
+        MethodKind::Grid => {
             let bricks: f64 = params.grid.iter().map(|&c| f64::from(c)).product();
             (
                 format!(
@@ -162,7 +162,7 @@ pub fn object_estimate(key: &str, spec: &ObjectSpec, world_model: BondModel) -> 
                 },
             )
         }
-        FractureMethod::Tetra => {
+        MethodKind::Tetra => {
             let points = vertices.div_ceil(u64::from(params.skip) + 1)
                 + u64::from(params.random_vertices)
                 + u64::from(params.center);
@@ -176,7 +176,7 @@ pub fn object_estimate(key: &str, spec: &ObjectSpec, world_model: BondModel) -> 
                 Estimate::tetra_fracture(points),
             )
         }
-        FractureMethod::Voronoi => (
+        MethodKind::Voronoi => (
             format!(
                 "{key}.pieces = {}: {} Voronoi cells",
                 params.pieces,
@@ -185,7 +185,7 @@ pub fn object_estimate(key: &str, spec: &ObjectSpec, world_model: BondModel) -> 
             fragments_at_most(f64::from(params.pieces)),
             Estimate::voronoi_fracture(u64::from(params.pieces), triangles),
         ),
-        FractureMethod::Slice => (
+        MethodKind::Slice => (
             format!("{key}.pieces = {}: slice planes", params.pieces),
             fragments_at_most(shatter_geom::budget::slice_pieces(u64::from(params.pieces))),
             Estimate::slice_fracture(u64::from(params.pieces), triangles),

@@ -6,7 +6,12 @@ use glam::{EulerRot, Quat, Vec3};
 use toml::Spanned;
 
 use crate::error::SimError;
-use crate::material::{FractureMethod, Material, Pattern};
+use std::str::FromStr;
+
+use shatter_geom::shapes::Shape;
+use shatter_geom::vocab::UnknownWord;
+
+use crate::material::Material;
 use crate::object::{
     BondModel, ExplosionSpec, FractureParams, FractureSource, ObjectSpec, ProjectileShape,
     ProjectileSpec,
@@ -120,7 +125,7 @@ impl Scene {
             settings.dt = v;
         }
         if let Some(m) = &w.bond_model {
-            settings.bond_model = bond_model(&ctx, "world.bond_model", m)?;
+            settings.bond_model = word(&ctx, "world.bond_model", m)?;
         }
         if let Some(g) = w.ground {
             settings.ground = g;
@@ -213,16 +218,24 @@ pub(crate) fn mesh_error(path: &str, e: &shatter_geom::io::MeshIoError) -> SimEr
     }
 }
 
-fn bond_model(ctx: &Ctx, key: &str, v: &Spanned<String>) -> Result<BondModel, SimError> {
-    BondModel::from_name(v.get_ref()).ok_or_else(|| {
-        SimError::invalid(
-            ctx.key(key, v),
-            format!(
-                "unknown bond model `{}` (expected joints or clusters)",
-                v.get_ref()
-            ),
-        )
-    })
+/// A vocabulary word (a method, a pattern, a bond model, ...) at `key`.
+fn word<T: FromStr<Err = UnknownWord>>(
+    ctx: &Ctx,
+    key: &str,
+    v: &Spanned<String>,
+) -> Result<T, SimError> {
+    v.get_ref()
+        .parse()
+        .map_err(|e: UnknownWord| SimError::invalid(ctx.key(key, v), e.to_string()))
+}
+
+/// An optional vocabulary word at `key`.
+fn opt_word<T: FromStr<Err = UnknownWord>>(
+    ctx: &Ctx,
+    key: &str,
+    v: &Option<Spanned<String>>,
+) -> Result<Option<T>, SimError> {
+    v.as_ref().map(|v| word(ctx, key, v)).transpose()
 }
 
 fn count(
@@ -295,38 +308,8 @@ fn object(ctx: &Ctx, key: &str, o: &ObjectEntry) -> Result<ObjectSpec, SimError>
     if let Some(r) = o.restitution {
         material.restitution = r;
     }
-    let method = match &o.method {
-        None => None,
-        Some(m) => Some(match m.get_ref().as_str() {
-            "tetra" => FractureMethod::Tetra,
-            "voronoi" => FractureMethod::Voronoi,
-            "slice" => FractureMethod::Slice,
-            "grid" => FractureMethod::Grid,
-            other => {
-                return Err(SimError::invalid(
-                    ctx.key(&format!("{key}.method"), m),
-                    format!("unknown method `{other}` (expected tetra, voronoi, slice or grid)"),
-                ));
-            }
-        }),
-    };
-    let pattern = match &o.pattern {
-        None => None,
-        Some(p) => Some(match p.get_ref().as_str() {
-            "uniform" => Pattern::Uniform,
-            "clustered" => Pattern::Clustered,
-            "radial" => Pattern::Radial,
-            "splinter" => Pattern::Splinter,
-            other => {
-                return Err(SimError::invalid(
-                    ctx.key(&format!("{key}.pattern"), p),
-                    format!(
-                        "unknown pattern `{other}` (expected uniform, clustered, radial or splinter)"
-                    ),
-                ));
-            }
-        }),
-    };
+    let method = opt_word(ctx, &format!("{key}.method"), &o.method)?;
+    let pattern = opt_word(ctx, &format!("{key}.pattern"), &o.pattern)?;
     let defaults = FractureParams::default();
     let grid = match &o.grid {
         None => defaults.grid,
@@ -371,24 +354,12 @@ fn object(ctx: &Ctx, key: &str, o: &ObjectEntry) -> Result<ObjectSpec, SimError>
         )?,
         skip: count(ctx, &format!("{key}.skip"), &o.skip, 0, defaults.skip)?,
         center: o.center.unwrap_or(defaults.center),
-        thesis_placement: match &o.placement {
-            None => false,
-            Some(p) => match p.get_ref().as_str() {
-                "interior" => false,
-                "thesis" => true,
-                other => {
-                    return Err(SimError::invalid(
-                        ctx.key(&format!("{key}.placement"), p),
-                        format!("unknown placement `{other}` (expected interior or thesis)"),
-                    ));
-                }
-            },
-        },
+        placement: opt_word(ctx, &format!("{key}.placement"), &o.placement)?
+            .unwrap_or(defaults.placement),
         seed: o.seed.unwrap_or(defaults.seed),
         grid,
         grid_voids,
     };
-    const SHAPES: [&str; 6] = ["cube", "capsule", "cylinder", "sphere", "torus", "bird"];
     let source = match (&o.shape, &o.mesh) {
         (Some(_), Some(_)) => {
             return Err(SimError::invalid(
@@ -396,24 +367,19 @@ fn object(ctx: &Ctx, key: &str, o: &ObjectEntry) -> Result<ObjectSpec, SimError>
                 "give either shape or mesh, not both",
             ));
         }
-        (Some(s), None) => {
-            if !SHAPES.contains(&s.get_ref().as_str()) {
-                return Err(SimError::UnknownShape {
-                    key: ctx.key(&format!("{key}.shape"), s),
-                    name: s.get_ref().clone(),
-                });
-            }
-            FractureSource::Shape {
+        (Some(s), None) => FractureSource::Shape {
+            shape: s.get_ref().parse().map_err(|_| SimError::UnknownShape {
+                key: ctx.key(&format!("{key}.shape"), s),
                 name: s.get_ref().clone(),
-                params,
-            }
-        }
+            })?,
+            params,
+        },
         (None, Some(m)) => FractureSource::MeshFile {
             path: ctx.path(m),
             params,
         },
         (None, None) => FractureSource::Shape {
-            name: "cube".to_string(),
+            shape: Shape::Cube,
             params,
         },
     };
@@ -454,7 +420,7 @@ fn object(ctx: &Ctx, key: &str, o: &ObjectEntry) -> Result<ObjectSpec, SimError>
         bond_model: o
             .bond_model
             .as_ref()
-            .map(|m| bond_model(ctx, &format!("{key}.bond_model"), m))
+            .map(|m| word(ctx, &format!("{key}.bond_model"), m))
             .transpose()?,
         anchored: o.anchored.unwrap_or(false),
     };

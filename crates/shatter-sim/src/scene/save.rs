@@ -4,32 +4,13 @@ use glam::EulerRot;
 use toml::Spanned;
 
 use crate::error::SimError;
-use crate::material::{FractureMethod, Pattern};
-use crate::object::{FractureSource, ProjectileShape};
+use crate::object::FractureSource;
 use crate::scene::file::{ExplosionEntry, ObjectEntry, ProjectileEntry, SceneFile, WorldSection};
 use crate::world::World;
 use crate::world::state::Action;
 
 fn sp<T>(v: T) -> Spanned<T> {
     Spanned::new(0..0, v)
-}
-
-fn method_name(m: FractureMethod) -> &'static str {
-    match m {
-        FractureMethod::Tetra => "tetra",
-        FractureMethod::Voronoi => "voronoi",
-        FractureMethod::Slice => "slice",
-        FractureMethod::Grid => "grid",
-    }
-}
-
-fn pattern_name(p: Pattern) -> &'static str {
-    match p {
-        Pattern::Uniform => "uniform",
-        Pattern::Clustered => "clustered",
-        Pattern::Radial => "radial",
-        Pattern::Splinter => "splinter",
-    }
 }
 
 impl World {
@@ -52,7 +33,9 @@ impl World {
         for (id, record) in &self.objects {
             let spec = &record.spec;
             let (shape, mesh, params) = match &spec.source {
-                FractureSource::Shape { name, params } => (Some(sp(name.clone())), None, params),
+                FractureSource::Shape { shape, params } => {
+                    (Some(sp(shape.to_string())), None, params)
+                }
                 FractureSource::MeshFile { path, params } => (None, Some(path.clone()), params),
                 FractureSource::Prebuilt(_) => {
                     return Err(SimError::invalid(
@@ -66,14 +49,14 @@ impl World {
                 name: Some(spec.name.clone()),
                 shape,
                 mesh,
-                method: Some(sp(method_name(
-                    params.method.unwrap_or(spec.material.method),
-                )
-                .to_string())),
-                pattern: Some(sp(pattern_name(
-                    params.pattern.unwrap_or(spec.material.pattern),
-                )
-                .to_string())),
+                method: Some(sp(params
+                    .method
+                    .unwrap_or(spec.material.method)
+                    .to_string())),
+                pattern: Some(sp(params
+                    .pattern
+                    .unwrap_or(spec.material.pattern)
+                    .to_string())),
                 pieces: Some(sp(params.pieces as i64)),
                 grid: Some(sp(params.grid.map(i64::from))),
                 grid_voids: (!params.grid_voids.is_empty())
@@ -81,12 +64,7 @@ impl World {
                 random_vertices: Some(sp(params.random_vertices as i64)),
                 skip: Some(sp(params.skip as i64)),
                 center: Some(params.center),
-                placement: Some(sp(if params.thesis_placement {
-                    "thesis"
-                } else {
-                    "interior"
-                }
-                .to_string())),
+                placement: Some(sp(params.placement.to_string())),
                 seed: Some(params.seed),
                 material: None,
                 density: Some(spec.material.density),
@@ -105,17 +83,11 @@ impl World {
         for (at, action) in &self.schedule {
             match action {
                 Action::Fire(p) => {
-                    let shape = match &p.shape {
-                        ProjectileShape::Cube => "cube",
-                        ProjectileShape::Sphere => "sphere",
-                        ProjectileShape::Capsule => "capsule",
-                        ProjectileShape::Cylinder => "cylinder",
-                        ProjectileShape::Custom(_) => {
-                            return Err(SimError::invalid(
-                                "projectiles",
-                                "a custom-mesh projectile cannot be written (its mesh is not a file)",
-                            ));
-                        }
+                    let Some(shape) = p.shape.shape() else {
+                        return Err(SimError::invalid(
+                            "projectiles",
+                            "a custom-mesh projectile cannot be written (its mesh is not a file)",
+                        ));
                     };
                     file.projectiles.push(ProjectileEntry {
                         at: Some(sp(*at)),
