@@ -6,7 +6,7 @@ use std::sync::Arc;
 use bevy::prelude::*;
 use bevy::tasks::{AsyncComputeTaskPool, Task, block_on, poll_once};
 use shatter_geom::fracture::{self as geom, Fracture};
-use shatter_sim::{BondModel, FractureMethod, Material, Pattern};
+use shatter_sim::{BondModel, Material, MethodKind, Pattern};
 
 use crate::asset::FractureAsset;
 use crate::{FractureFailed, Fractured, ShatterSettings, convert, spawn};
@@ -17,11 +17,11 @@ use crate::{FractureFailed, Fractured, ShatterSettings, convert, spawn};
 ///
 /// ```
 /// use bevy_shatter::Breakable;
-/// use shatter_sim::{FractureMethod, Material};
+/// use shatter_sim::{MethodKind, Material};
 ///
 /// let glass = Breakable {
 ///     material: Material::preset("glass").expect("a preset"),
-///     method: FractureMethod::Voronoi,
+///     method: MethodKind::Voronoi,
 ///     pieces: 30,
 ///     ..Breakable::default()
 /// };
@@ -32,12 +32,12 @@ pub struct Breakable {
     /// Density, friction, restitution, break force (`strength`) and wear.
     pub material: Material,
     /// How the mesh is cut.
-    pub method: FractureMethod,
+    pub method: MethodKind,
     /// Voronoi seed pattern.
     pub pattern: Pattern,
     /// Number of pieces (Voronoi seeds, slice planes; tetra: random interior points).
     pub pieces: u32,
-    /// Cells along x, y, z of the [`FractureMethod::Grid`] method (cuts the mesh's bounding
+    /// Cells along x, y, z of the [`MethodKind::Grid`] method (cuts the mesh's bounding
     /// box into bricks).
     pub grid: [u32; 3],
     /// Random seed: the same seed gives the same fragments.
@@ -63,7 +63,7 @@ impl Default for Breakable {
             friction: 0.6,
             restitution: 0.1,
             strength: 20_000.0,
-            method: FractureMethod::Voronoi,
+            method: MethodKind::Voronoi,
             pattern: Pattern::Uniform,
             compression: 30e6,
             tension: 3e6,
@@ -72,7 +72,7 @@ impl Default for Breakable {
         });
         Breakable {
             material,
-            method: FractureMethod::Voronoi,
+            method: MethodKind::Voronoi,
             pattern: Pattern::Uniform,
             pieces: 20,
             grid: [4, 4, 1],
@@ -94,7 +94,7 @@ impl Breakable {
     /// ```
     pub fn grid(cells: [u32; 3]) -> Breakable {
         Breakable {
-            method: FractureMethod::Grid,
+            method: MethodKind::Grid,
             grid: cells,
             ..Breakable::default()
         }
@@ -139,7 +139,7 @@ impl Breakable {
             )));
         }
         let mesh = convert::tri_mesh(mesh).ok_or(BreakableError::NotATriangleMesh)?;
-        if self.method == FractureMethod::Grid {
+        if self.method == MethodKind::Grid {
             let (lo, hi) = mesh.positions.iter().fold(
                 (glam::DVec3::splat(f64::MAX), glam::DVec3::splat(f64::MIN)),
                 |(lo, hi), p| (lo.min(*p), hi.max(*p)),
@@ -163,18 +163,13 @@ impl Breakable {
             return Ok(f);
         }
         let method = match self.method {
-            FractureMethod::Voronoi => geom::Method::Voronoi {
+            MethodKind::Voronoi => geom::Method::Voronoi {
                 pieces: self.pieces as usize,
-                pattern: match self.pattern {
-                    Pattern::Uniform => geom::Pattern::Uniform,
-                    Pattern::Clustered => geom::Pattern::Clustered,
-                    Pattern::Radial => geom::Pattern::Radial,
-                    Pattern::Splinter => geom::Pattern::Splinter,
-                },
+                pattern: self.pattern,
                 impact: None,
                 seeds: None,
             },
-            FractureMethod::Slice => geom::Method::Slice {
+            MethodKind::Slice => geom::Method::Slice {
                 pieces: self.pieces as usize,
                 planes: None,
             },

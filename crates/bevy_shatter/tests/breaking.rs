@@ -12,7 +12,7 @@ use bevy_shatter::{
     BondBroken, Breakable, BreakableError, FractureFailed, Fractured, ShatterObject, ShatterPlugin,
     ShatterSystems, Split,
 };
-use shatter_sim::FractureMethod;
+use shatter_sim::MethodKind;
 
 /// What arrived.
 #[derive(Resource, Default)]
@@ -252,7 +252,7 @@ fn two_runs_with_the_same_seed_end_in_the_same_state() {
         let w = wall(
             &mut app,
             Breakable {
-                method: FractureMethod::Voronoi,
+                method: MethodKind::Voronoi,
                 pieces: 12,
                 seed: 7,
                 anchored: true,

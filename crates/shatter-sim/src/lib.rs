@@ -39,7 +39,7 @@ pub mod testing;
 pub mod world;
 
 pub use error::SimError;
-pub use material::{FractureMethod, Material, MaterialPreset, MethodKind, Pattern};
+pub use material::{Material, MaterialPreset, MethodKind, Pattern};
 pub use object::{
     BondModel, ExplosionSpec, FractureParams, FractureSource, ObjectSpec, ProjectileShape,
     ProjectileSpec,

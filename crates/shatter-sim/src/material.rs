@@ -23,10 +23,6 @@ pub use shatter_geom::fracture::{MethodKind, Pattern};
 
 use crate::error::SimError;
 
-/// The name of a fracture method: [`shatter_geom::fracture::MethodKind`] under its
-/// former name here.
-pub type FractureMethod = MethodKind;
-
 shatter_geom::vocabulary! {
     /// A material preset: see the table above and [`MaterialPreset::material`].
     ///
