@@ -44,13 +44,15 @@ pub const DELAUNAY_POINTS_PER_SECOND: f64 = 2.5e5;
 /// Tetrahedra per point of a 3D Delaunay tetrahedralization of uniform points (6.7 for a
 /// million points; points on a surface give fewer).
 pub const TETRAHEDRA_PER_POINT: f64 = 6.7;
-/// Bytes per tetrahedron of a tetra fracture at its peak (each tetrahedron is a piece
-/// before slivers are merged): `shatter fracture --shape cube --method tetra
-/// --random-vertices 80000 --json` peaks at 149 MB for 528,000 tetrahedra.
-pub const TETRA_BYTES_PER_TETRAHEDRON: f64 = 300.0;
-/// CPU seconds per tetrahedron of a tetra fracture after the tetrahedralization (the
-/// same run: 1.1 s of CPU).
-pub const TETRA_SECONDS_PER_TETRAHEDRON: f64 = 2.0e-6;
+/// Bytes per tetrahedron of a tetra fracture at its peak (each tetrahedron is a piece,
+/// clipped to the mesh where the surface enters it, before slivers are merged as
+/// unions): `shatter fracture --shape cube --method tetra --random-vertices 20000
+/// --json` peaks at 236 MB for about 134,000 tetrahedra.
+pub const TETRA_BYTES_PER_TETRAHEDRON: f64 = 1700.0;
+/// CPU seconds per tetrahedron of a tetra fracture after the tetrahedralization
+/// (clipping and union-based merging: about 3e-5 s on the cube with 500 points, 1e-4 s
+/// on the bird, where most tetrahedra touch the surface).
+pub const TETRA_SECONDS_PER_TETRAHEDRON: f64 = 3.0e-5;
 /// Bytes per Voronoi cell at the peak (its clipped mesh with caps, convex pieces,
 /// bonds): `shatter fracture --shape bird --pieces 1000` and `--pieces 4000` peak at
 /// 11 and 10.5 kB per cell above the process.

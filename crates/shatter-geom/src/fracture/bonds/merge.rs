@@ -64,12 +64,21 @@ pub(crate) fn merge_small_with(
     let mut refused: BTreeSet<(usize, usize)> = BTreeSet::new();
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&a, &b| vol[a].total_cmp(&vol[b]).then(a.cmp(&b)));
+    // Each piece's bonds, and each group's pieces (held by its root), so a group's
+    // neighbours are found from its own bonds, not by a scan of them all.
+    let mut incident: Vec<Vec<u32>> = vec![Vec::new(); n];
+    for (k, b) in bonds.iter().enumerate() {
+        incident[b.a as usize].push(k as u32);
+        incident[b.b as usize].push(k as u32);
+    }
+    let mut members: Vec<Vec<usize>> = (0..n).map(|i| vec![i]).collect();
     let join = |g: usize,
                 h: usize,
                 uf: &mut UnionFind,
                 geometry: &mut Vec<Option<Piece>>,
                 vol: &mut Vec<f64>,
                 count: &mut Vec<usize>,
+                members: &mut Vec<Vec<usize>>,
                 refused: &mut BTreeSet<(usize, usize)>|
      -> bool {
         let key = (g.min(h), g.max(h));
@@ -89,6 +98,9 @@ pub(crate) fn merge_small_with(
                 vol[r] = v;
                 count[r] = c;
                 geometry[r] = Some(joined);
+                let other = if r == g { h } else { g };
+                let moved = std::mem::take(&mut members[other]);
+                members[r].extend(moved);
                 true
             }
             Err(_) => {
@@ -106,7 +118,8 @@ pub(crate) fn merge_small_with(
             }
             // Total bond area from group g to each other group, largest first.
             let mut area_to: BTreeMap<usize, f64> = BTreeMap::new();
-            for b in &bonds {
+            for &k in members[g].iter().flat_map(|&p| &incident[p]) {
+                let b = &bonds[k as usize];
                 let (ga, gb) = (uf.find(b.a as usize), uf.find(b.b as usize));
                 if ga == gb {
                     continue;
@@ -127,6 +140,7 @@ pub(crate) fn merge_small_with(
                     &mut geometry,
                     &mut vol,
                     &mut count,
+                    &mut members,
                     &mut refused,
                 ) {
                     changed = true;
@@ -175,6 +189,7 @@ pub(crate) fn merge_small_with(
                     &mut geometry,
                     &mut vol,
                     &mut count,
+                    &mut members,
                     &mut refused,
                 ) {
                     merged.unjoined += 1;
