@@ -147,24 +147,8 @@ pub fn write_fracture(
     if format == MeshFormat::Glb {
         return write_fracture_asset(path, fracture, &io::FractureAssetMeta::default(), progress);
     }
-    let names: Vec<String> = (0..fracture.fragments.len())
-        .map(|i| format!("fragment_{i}"))
-        .collect();
-    let objects: Vec<ExportObject<'_>> = fracture
-        .fragments
-        .iter()
-        .zip(&names)
-        .map(|(f, name)| {
-            let o = ExportObject::new(name, &f.mesh)
-                .with_interior(&f.interior)
-                .with_corners(&f.corners);
-            if f.material.len() == f.mesh.triangles.len() {
-                o.with_materials(&f.material)
-            } else {
-                o
-            }
-        })
-        .collect();
+    let names = io::fragment_names(fracture.fragments.len());
+    let objects = ExportObject::of_fragments(&fracture.fragments, &names);
     save_with(path, format, &objects, Some(&fracture.materials), progress)
 }
 

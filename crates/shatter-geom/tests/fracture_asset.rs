@@ -181,22 +181,7 @@ fn a_textured_model_keeps_its_uvs_normals_and_texture() {
 fn the_asset_is_still_an_ordinary_gltf_with_the_same_nodes() {
     let fr = bird(20);
     let glb = write(&fr, &meta());
-    let names: Vec<String> = (0..fr.fragments.len())
-        .map(|i| format!("fragment_{i}"))
-        .collect();
-    let objects: Vec<ExportObject<'_>> = fr
-        .fragments
-        .iter()
-        .zip(&names)
-        .map(|(f, n)| {
-            ExportObject::new(n, &f.mesh)
-                .with_interior(&f.interior)
-                .with_corners(&f.corners)
-                .with_materials(&f.material)
-        })
-        .collect();
-    let mut plain = Vec::new();
-    io::write_glb_with_materials(&mut plain, &objects, &fr.materials).unwrap();
+    let plain = plain_glb(&fr);
     let doc = gltf::Gltf::from_slice(&glb).unwrap();
     let plain_doc = gltf::Gltf::from_slice(&plain).unwrap();
     assert_eq!(doc.nodes().count(), plain_doc.nodes().count());
@@ -290,22 +275,7 @@ fn the_extension_costs_less_than_half_the_plain_file() {
     let model = shatter_geom::model::Model::from_mesh(shapes::bird());
     let fr = fracture_model(&model, &voronoi(100, 0)).unwrap();
     let asset = write(&fr, &FractureAssetMeta::default());
-    let names: Vec<String> = (0..fr.fragments.len())
-        .map(|i| format!("fragment_{i}"))
-        .collect();
-    let objects: Vec<ExportObject<'_>> = fr
-        .fragments
-        .iter()
-        .zip(&names)
-        .map(|(f, n)| {
-            ExportObject::new(n, &f.mesh)
-                .with_interior(&f.interior)
-                .with_corners(&f.corners)
-                .with_materials(&f.material)
-        })
-        .collect();
-    let mut plain = Vec::new();
-    io::write_glb_with_materials(&mut plain, &objects, &fr.materials).unwrap();
+    let plain = plain_glb(&fr);
     let (json, _) = split(&asset);
     let ext_json = serde_json::to_vec(&json["extensions"]).unwrap().len()
         + json["nodes"]
@@ -356,4 +326,13 @@ fn the_writer_refuses_interior_faces_it_could_not_tell_apart() {
     f.material[t] = fr.materials.len() as u32 - 1;
     let err = io::write_fracture_glb(&mut glb, &fr, &FractureAssetMeta::default()).unwrap_err();
     assert!(err.to_string().contains("2 materials"), "{err}");
+}
+
+/// The same fragments as an ordinary GLB (no extension), as the writers export them.
+fn plain_glb(fr: &Fracture) -> Vec<u8> {
+    let names = io::fragment_names(fr.fragments.len());
+    let objects = ExportObject::of_fragments(&fr.fragments, &names);
+    let mut plain = Vec::new();
+    io::write_glb_with_materials(&mut plain, &objects, &fr.materials).unwrap();
+    plain
 }

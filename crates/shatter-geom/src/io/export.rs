@@ -4,6 +4,7 @@
 
 use super::MeshIoError;
 use crate::TriMesh;
+use crate::fracture::Fragment;
 use crate::model::{Corners, Material, Model};
 
 /// One object to export: a named mesh whose triangles are flagged surface or interior
@@ -35,6 +36,11 @@ pub struct ExportObject<'a> {
     pub material: Option<&'a [u32]>,
     /// Per-corner attributes (UVs, normals, colours), one entry per triangle.
     pub corners: Option<&'a Corners>,
+}
+
+/// The object names of a fracture's `n` fragments in exported files: `fragment_0`, ….
+pub fn fragment_names(n: usize) -> Vec<String> {
+    (0..n).map(|i| format!("fragment_{i}")).collect()
 }
 
 /// Material names used by the writers.
@@ -76,6 +82,28 @@ impl<'a> ExportObject<'a> {
         Self::new(name, &model.mesh)
             .with_materials(&model.material)
             .with_corners(&model.corners)
+    }
+
+    /// A fracture's fragment: its mesh, interior flags, corner attributes and (when it
+    /// has one per triangle) its materials, indices into the fracture's `materials`.
+    pub fn of_fragment(name: &'a str, fragment: &'a Fragment) -> Self {
+        let o = Self::new(name, &fragment.mesh)
+            .with_interior(&fragment.interior)
+            .with_corners(&fragment.corners);
+        if fragment.material.len() == fragment.mesh.triangles.len() {
+            o.with_materials(&fragment.material)
+        } else {
+            o
+        }
+    }
+
+    /// A fracture's fragments, named by `names` (see [`fragment_names`]).
+    pub fn of_fragments(fragments: &'a [Fragment], names: &'a [String]) -> Vec<Self> {
+        fragments
+            .iter()
+            .zip(names)
+            .map(|(f, name)| Self::of_fragment(name, f))
+            .collect()
     }
 
     /// With per-triangle interior flags.

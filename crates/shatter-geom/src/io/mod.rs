@@ -47,6 +47,7 @@ mod warning;
 pub use error::MeshIoError;
 pub use export::{
     ExportObject, INTERIOR_COLOR, INTERIOR_MATERIAL, SURFACE_COLOR, SURFACE_MATERIAL,
+    fragment_names,
 };
 pub use files::{FileSource, FileSystem, Layered, MemoryFiles, NoFiles, shared_files};
 pub use gltf::{

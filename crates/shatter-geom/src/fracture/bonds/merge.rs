@@ -48,79 +48,30 @@ pub(crate) fn merge_small_with(
     eps: f64,
 ) -> (Vec<Piece>, Vec<Bond>, Merged, Vec<u32>) {
     let n = pieces.len();
-    let mut vol: Vec<f64> = pieces.iter().map(Piece::volume).collect();
-    // Members per group (held by its root): a poor piece is small while alone.
-    let mut count: Vec<usize> = vec![1; n];
-    let small = |g: usize, vol: &[f64], count: &[usize]| {
-        vol[g] < min_volume || (count[g] == 1 && poor.get(g).copied().unwrap_or(false))
+    let vol: Vec<f64> = pieces.iter().map(Piece::volume).collect();
+    // A group is small below the volume, or while it is one poor piece.
+    let is_small = |g: usize, vol: f64, count: usize| {
+        vol < min_volume || (count == 1 && poor.get(g).copied().unwrap_or(false))
     };
-    if (0..n).all(|i| !small(i, &vol, &count)) {
+    if (0..n).all(|i| !is_small(i, vol[i], 1)) {
         return (pieces, bonds, Merged::default(), (0..n as u32).collect());
     }
-    let mut uf = UnionFind::new(n);
-    // Each group's surface, held by its root.
-    let mut geometry: Vec<Option<Piece>> = pieces.into_iter().map(Some).collect();
-    // Pairs of groups (by their pieces' ids at the time) whose union failed.
-    let mut refused: BTreeSet<(usize, usize)> = BTreeSet::new();
+    let mut groups = Groups::new(pieces, vol, &bonds);
+    let small = |g: usize, groups: &Groups| is_small(g, groups.vol[g], groups.count[g]);
     let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by(|&a, &b| vol[a].total_cmp(&vol[b]).then(a.cmp(&b)));
-    // Each piece's bonds, and each group's pieces (held by its root), so a group's
-    // neighbours are found from its own bonds, not by a scan of them all.
-    let mut incident: Vec<Vec<u32>> = vec![Vec::new(); n];
-    for (k, b) in bonds.iter().enumerate() {
-        incident[b.a as usize].push(k as u32);
-        incident[b.b as usize].push(k as u32);
-    }
-    let mut members: Vec<Vec<usize>> = (0..n).map(|i| vec![i]).collect();
-    let join = |g: usize,
-                h: usize,
-                uf: &mut UnionFind,
-                geometry: &mut Vec<Option<Piece>>,
-                vol: &mut Vec<f64>,
-                count: &mut Vec<usize>,
-                members: &mut Vec<Vec<usize>>,
-                refused: &mut BTreeSet<(usize, usize)>|
-     -> bool {
-        let key = (g.min(h), g.max(h));
-        if refused.contains(&key) {
-            return false;
-        }
-        let (Some(pg), Some(ph)) = (geometry[g].as_ref(), geometry[h].as_ref()) else {
-            return false;
-        };
-        match union(&[ph, pg], eps) {
-            Ok(joined) => {
-                let (v, c) = (vol[g] + vol[h], count[g] + count[h]);
-                geometry[g] = None;
-                geometry[h] = None;
-                uf.union(g, h);
-                let r = uf.find(g);
-                vol[r] = v;
-                count[r] = c;
-                geometry[r] = Some(joined);
-                let other = if r == g { h } else { g };
-                let moved = std::mem::take(&mut members[other]);
-                members[r].extend(moved);
-                true
-            }
-            Err(_) => {
-                refused.insert(key);
-                false
-            }
-        }
-    };
+    order.sort_by(|&a, &b| groups.vol[a].total_cmp(&groups.vol[b]).then(a.cmp(&b)));
     loop {
         let mut changed = false;
         for &i in &order {
-            let g = uf.find(i);
-            if !small(g, &vol, &count) {
+            let g = groups.uf.find(i);
+            if !small(g, &groups) {
                 continue;
             }
             // Total bond area from group g to each other group, largest first.
             let mut area_to: BTreeMap<usize, f64> = BTreeMap::new();
-            for &k in members[g].iter().flat_map(|&p| &incident[p]) {
+            for &k in groups.members[g].iter().flat_map(|&p| &groups.incident[p]) {
                 let b = &bonds[k as usize];
-                let (ga, gb) = (uf.find(b.a as usize), uf.find(b.b as usize));
+                let (ga, gb) = (groups.uf.find(b.a as usize), groups.uf.find(b.b as usize));
                 if ga == gb {
                     continue;
                 }
@@ -132,20 +83,8 @@ pub(crate) fn merge_small_with(
             }
             let mut candidates: Vec<(usize, f64)> = area_to.into_iter().collect();
             candidates.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
-            for (h, _) in candidates {
-                if join(
-                    g,
-                    h,
-                    &mut uf,
-                    &mut geometry,
-                    &mut vol,
-                    &mut count,
-                    &mut members,
-                    &mut refused,
-                ) {
-                    changed = true;
-                    break;
-                }
+            if candidates.into_iter().any(|(h, _)| groups.join(g, h, eps)) {
+                changed = true;
             }
         }
         if !changed {
@@ -158,16 +97,16 @@ pub(crate) fn merge_small_with(
     // it touches or nearly, if their union is closed.
     let mut merged = Merged::default();
     for &i in &order {
-        let g = uf.find(i);
-        if !small(g, &vol, &count) || geometry[g].is_none() {
+        let g = groups.uf.find(i);
+        if !small(g, &groups) {
             continue;
         }
-        let Some(pg) = geometry[g].as_ref() else {
+        let Some(pg) = groups.geometry[g].as_ref() else {
             continue;
         };
         let centroid = pg.pos.iter().copied().sum::<DVec3>() / pg.pos.len().max(1) as f64;
         let mut nearest: Option<(f64, usize)> = None;
-        for (h, ph) in geometry.iter().enumerate() {
+        for (h, ph) in groups.geometry.iter().enumerate() {
             let Some(ph) = ph else { continue };
             if h == g {
                 continue;
@@ -182,16 +121,7 @@ pub(crate) fn merge_small_with(
         match nearest {
             None => merged.lonely += 1,
             Some((_, h)) => {
-                if !join(
-                    g,
-                    h,
-                    &mut uf,
-                    &mut geometry,
-                    &mut vol,
-                    &mut count,
-                    &mut members,
-                    &mut refused,
-                ) {
+                if !groups.join(g, h, eps) {
                     merged.unjoined += 1;
                 }
             }
@@ -201,10 +131,10 @@ pub(crate) fn merge_small_with(
     let mut slot = vec![usize::MAX; n];
     let mut out: Vec<Piece> = Vec::new();
     for (i, id) in new_id.iter_mut().enumerate() {
-        let r = uf.find(i);
+        let r = groups.uf.find(i);
         if slot[r] == usize::MAX {
             slot[r] = out.len();
-            out.push(geometry[r].take().unwrap_or_default());
+            out.push(groups.geometry[r].take().unwrap_or_default());
         }
         *id = slot[r] as u32;
     }
@@ -237,4 +167,72 @@ pub(crate) fn merge_small_with(
         })
         .collect();
     (out, bonds, merged, new_id)
+}
+
+/// The groups being merged: each piece's group, and per group (held by its root) its
+/// surface, volume, member count and members; each piece's bonds; the pairs whose union
+/// failed.
+struct Groups {
+    uf: UnionFind,
+    geometry: Vec<Option<Piece>>,
+    vol: Vec<f64>,
+    count: Vec<usize>,
+    members: Vec<Vec<usize>>,
+    /// Each piece's bonds, so a group's neighbours are found from its own bonds, not by
+    /// a scan of them all.
+    incident: Vec<Vec<u32>>,
+    /// Pairs of groups (by their roots at the time) whose union failed.
+    refused: BTreeSet<(usize, usize)>,
+}
+
+impl Groups {
+    fn new(pieces: Vec<Piece>, vol: Vec<f64>, bonds: &[Bond]) -> Groups {
+        let n = pieces.len();
+        let mut incident: Vec<Vec<u32>> = vec![Vec::new(); n];
+        for (k, b) in bonds.iter().enumerate() {
+            incident[b.a as usize].push(k as u32);
+            incident[b.b as usize].push(k as u32);
+        }
+        Groups {
+            uf: UnionFind::new(n),
+            geometry: pieces.into_iter().map(Some).collect(),
+            vol,
+            count: vec![1; n],
+            members: (0..n).map(|i| vec![i]).collect(),
+            incident,
+            refused: BTreeSet::new(),
+        }
+    }
+
+    /// Joins groups `g` and `h` (roots) when the union of their surfaces is a closed
+    /// 2-manifold; a refused pair is remembered and not tried again.
+    fn join(&mut self, g: usize, h: usize, eps: f64) -> bool {
+        let key = (g.min(h), g.max(h));
+        if self.refused.contains(&key) {
+            return false;
+        }
+        let (Some(pg), Some(ph)) = (self.geometry[g].as_ref(), self.geometry[h].as_ref()) else {
+            return false;
+        };
+        match union(&[ph, pg], eps) {
+            Ok(joined) => {
+                let (v, c) = (self.vol[g] + self.vol[h], self.count[g] + self.count[h]);
+                self.geometry[g] = None;
+                self.geometry[h] = None;
+                self.uf.union(g, h);
+                let r = self.uf.find(g);
+                self.vol[r] = v;
+                self.count[r] = c;
+                self.geometry[r] = Some(joined);
+                let other = if r == g { h } else { g };
+                let moved = std::mem::take(&mut self.members[other]);
+                self.members[r].extend(moved);
+                true
+            }
+            Err(_) => {
+                self.refused.insert(key);
+                false
+            }
+        }
+    }
 }

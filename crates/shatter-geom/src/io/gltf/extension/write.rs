@@ -9,7 +9,7 @@ use serde_json::{Value, json};
 use super::{FRACTURE_EXTENSION, FRACTURE_EXTENSION_VERSION, FractureAssetMeta};
 use crate::fracture::{Fracture, Fragment};
 use crate::io::export::ExportMaterials;
-use crate::io::{ExportObject, GlbBuilder, MeshIoError};
+use crate::io::{ExportObject, GlbBuilder, MeshIoError, fragment_names};
 
 /// Writes `fracture` as a GLB: one node and mesh per fragment (named `fragment_i`, as
 /// the plain GLB export names them), each triangle under its material, TEXCOORD_0,
@@ -77,22 +77,8 @@ fn bad(object: &str, message: String) -> MeshIoError {
 
 fn fracture_glb(fracture: &Fracture, meta: &FractureAssetMeta) -> Result<Vec<u8>, MeshIoError> {
     let n = fracture.fragments.len();
-    let names: Vec<String> = (0..n).map(|i| format!("fragment_{i}")).collect();
-    let objects: Vec<ExportObject<'_>> = fracture
-        .fragments
-        .iter()
-        .zip(&names)
-        .map(|(f, name)| {
-            let o = ExportObject::new(name, &f.mesh)
-                .with_interior(&f.interior)
-                .with_corners(&f.corners);
-            if f.material.len() == f.mesh.triangles.len() {
-                o.with_materials(&f.material)
-            } else {
-                o
-            }
-        })
-        .collect();
+    let names = fragment_names(n);
+    let objects = ExportObject::of_fragments(&fracture.fragments, &names);
     let given = (!fracture.materials.is_empty()).then_some(fracture.materials.as_slice());
     let materials = ExportMaterials::new(given);
     materials.validate(&objects)?;
