@@ -282,7 +282,17 @@ impl SimBridge {
                     Some(o) => format!("object {o}: a body diverged and was removed ({reason})"),
                     None => format!("a projectile diverged and was removed ({reason})"),
                 }),
-                SimEvent::Expired(_) | SimEvent::BondsBroken { .. } => None,
+                SimEvent::FractureFailed {
+                    object,
+                    fragment,
+                    reason,
+                } => Some(format!(
+                    "object {object}: the runtime cut of fragment {fragment} failed ({reason}); \
+                     it stays whole"
+                )),
+                SimEvent::Expired(_)
+                | SimEvent::BondsBroken { .. }
+                | SimEvent::Fractured { .. } => None,
             })
             .collect()
     }

@@ -80,6 +80,7 @@ pub fn to_sim_spec(
             last: None,
             bond_model: None,
             anchored: false,
+            runtime: Default::default(),
         },
     };
     out.material = material;

@@ -33,6 +33,7 @@ pub mod breaking;
 pub mod error;
 pub mod material;
 pub mod object;
+pub mod runtime;
 pub mod scene;
 pub mod stress;
 pub mod testing;

@@ -137,12 +137,22 @@ impl LiveObject {
         force_events: Option<f32>,
     ) -> usize {
         let mut made = Vec::new();
+        let exact = self.exact_mass(f, surface.density);
         for piece in &self.prepared.pieces[f as usize] {
             let Some(builder) = ColliderBuilder::convex_hull(piece) else {
                 continue;
             };
+            // The fragment's exact mass properties sit on its first collider; the others
+            // only collide. (The hulls' own would be up to a few per cent off where a
+            // piece is convex only within the decomposition's tolerance, and a runtime
+            // cut or a split would then change the momentum.)
+            let mprops = if made.is_empty() {
+                exact
+            } else {
+                MassProperties::default()
+            };
             let mut builder = builder
-                .density(surface.density)
+                .mass_properties(mprops)
                 .friction(surface.friction)
                 .restitution(surface.restitution)
                 .user_data(tag(Kind::Fragment, object, f));
@@ -159,6 +169,15 @@ impl LiveObject {
         }
         self.colliders[f as usize] = made;
         count
+    }
+
+    /// Fragment `f`'s mass properties at `density` in the object's frame: mass, centroid
+    /// and inertia from its exact volume and inertia tensor.
+    fn exact_mass(&self, f: u32, density: f32) -> MassProperties {
+        let fragment = &self.prepared.fracture.fragments[f as usize];
+        let mass = self.prepared.masses[f as usize];
+        let i = fragment.inertia * f64::from(density);
+        MassProperties::with_inertia_matrix(fragment.centroid.as_vec3(), mass, i.as_mat3())
     }
 
     /// Marks bond `b` broken by an impact (idempotent).

@@ -5,13 +5,14 @@ use std::sync::Arc;
 
 use glam::Vec3;
 use shatter_geom::fracture::{Bond, Fracture, Fragment};
-use shatter_geom::model::Corners;
+use shatter_geom::model::{Corners, Model};
 use shatter_geom::shapes::Shape;
 use shatter_geom::{DMat3, DVec3, TriMesh};
 
 use crate::error::SimError;
 use crate::material::{MethodKind, Pattern};
 use crate::object::spec::{FractureParams, FractureSource, ObjectSpec};
+use crate::runtime::FractureTiming;
 use crate::testing::box_grid_fracture_with_voids;
 
 /// Simulation-ready geometry of one object, in its own frame with the scale applied.
@@ -29,8 +30,12 @@ pub struct Prepared {
     pub adjacency: Vec<Vec<u32>>,
 }
 
-/// Resolves the fracture of `spec` (unscaled).
+/// Resolves the fracture of `spec` (unscaled): its fragments, or for an `on_impact`
+/// object its intact body as one fragment ([`crate::runtime::whole`]).
 pub fn resolve_fracture(spec: &ObjectSpec, key: &str) -> Result<Arc<Fracture>, SimError> {
+    if spec.runtime.timing == FractureTiming::OnImpact {
+        return resolve_whole(spec, key);
+    }
     match &spec.source {
         FractureSource::Prebuilt(f) => Ok(f.clone()),
         FractureSource::Shape { shape, params } => {
@@ -59,6 +64,25 @@ pub fn resolve_fracture(spec: &ObjectSpec, key: &str) -> Result<Arc<Fracture>, S
             geom_fracture(&mesh, params, method, pattern, key)
         }
     }
+}
+
+/// The intact body of an `on_impact` object: its model (with UVs, normals and materials
+/// where the file has them) as a single fragment.
+fn resolve_whole(spec: &ObjectSpec, key: &str) -> Result<Arc<Fracture>, SimError> {
+    let model = match &spec.source {
+        FractureSource::Prebuilt(f) => return Ok(f.clone()),
+        FractureSource::Shape { shape, .. } => Model::from_mesh(shape.mesh()),
+        FractureSource::MeshFile { path, .. } => {
+            shatter_geom::io::load_model(path)
+                .map_err(|e| crate::scene::load::mesh_error(path, &e))?
+                .model
+        }
+    };
+    let whole = crate::runtime::whole(&model).map_err(|e| SimError::Fracture {
+        key: key.to_string(),
+        reason: e.to_string(),
+    })?;
+    Ok(Arc::new(whole))
 }
 
 /// Runs `shatter_geom::fracture` (tetra, voronoi, slice) on a mesh.

@@ -9,6 +9,7 @@ use shatter_geom::{DVec3, TriMesh, shapes};
 
 use crate::error::SimError;
 use crate::material::{Material, MethodKind, Pattern};
+use crate::runtime::{FractureTiming, RuntimeFracture};
 
 shatter_geom::vocabulary! {
     /// How the fragments of a breakable object hold together.
@@ -121,6 +122,9 @@ pub struct ObjectSpec {
     pub bond_model: Option<BondModel>,
     /// Bonds the fragments touching the object's lowest face to the world (walls).
     pub anchored: bool,
+    /// When the object is cut (at once or on impact) and how deep its fragments are cut
+    /// again when hit ([`crate::runtime`]).
+    pub runtime: RuntimeFracture,
 }
 
 impl ObjectSpec {
@@ -138,6 +142,7 @@ impl ObjectSpec {
             last: None,
             bond_model: None,
             anchored: false,
+            runtime: RuntimeFracture::default(),
         }
     }
 
@@ -184,6 +189,10 @@ impl ObjectSpec {
             ));
         }
         check_color(self.color, &format!("{key}.color"))?;
+        self.runtime.validate(key)?;
+        if self.runtime.timing == FractureTiming::OnImpact {
+            self.validate_on_impact(key)?;
+        }
         match &self.source {
             FractureSource::Prebuilt(_) => {}
             FractureSource::Shape { params, .. } | FractureSource::MeshFile { params, .. } => {
@@ -200,6 +209,47 @@ impl ObjectSpec {
                     ));
                 }
             }
+        }
+        Ok(())
+    }
+
+    /// An `on_impact` object is cut by radial Voronoi cells around the hit: a method or
+    /// pattern that says otherwise, or a prebuilt fracture of several fragments (which is
+    /// not one intact body), is an error rather than silently ignored.
+    fn validate_on_impact(&self, key: &str) -> Result<(), SimError> {
+        let params = match &self.source {
+            FractureSource::Prebuilt(f) => {
+                if f.fragments.len() != 1 {
+                    return Err(SimError::invalid(
+                        format!("{key}.fracture"),
+                        format!(
+                            "on_impact needs one intact body, but the prebuilt fracture has \
+                             {} fragments",
+                            f.fragments.len()
+                        ),
+                    ));
+                }
+                return Ok(());
+            }
+            FractureSource::Shape { params, .. } | FractureSource::MeshFile { params, .. } => {
+                params
+            }
+        };
+        if let Some(m) = params.method
+            && m != MethodKind::Voronoi
+        {
+            return Err(SimError::invalid(
+                format!("{key}.method"),
+                format!("on_impact cuts with voronoi cells around the hit, got method `{m}`"),
+            ));
+        }
+        if let Some(p) = params.pattern
+            && p != Pattern::Radial
+        {
+            return Err(SimError::invalid(
+                format!("{key}.pattern"),
+                format!("on_impact cuts with the radial pattern around the hit, got `{p}`"),
+            ));
         }
         Ok(())
     }

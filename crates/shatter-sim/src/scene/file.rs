@@ -109,6 +109,16 @@ pub struct ObjectEntry {
     pub bond_model: Option<Spanned<String>>,
     /// Bond the lowest fragments to the world.
     pub anchored: Option<bool>,
+    /// When the object is cut: `precomputed` (default) or `on_impact`.
+    pub fracture: Option<Spanned<String>>,
+    /// Contact impulse (N·s) of a hit that cuts (default: break force × dt).
+    #[serde(default, deserialize_with = "values::opt_spanned_f32")]
+    pub fracture_impulse: Option<Spanned<f32>>,
+    /// Fracture levels: fragments below it are cut again when hit (default 1).
+    pub depth: Option<Spanned<i64>>,
+    /// Fragments smaller than this (m, bounding-box diagonal) are not cut again.
+    #[serde(default, deserialize_with = "values::opt_spanned_f32")]
+    pub min_size: Option<Spanned<f32>>,
 }
 
 /// `[[projectiles]]`.

@@ -6,6 +6,7 @@ use glam::{EulerRot, Quat, Vec3};
 use toml::Spanned;
 
 use crate::error::SimError;
+use crate::runtime::RuntimeFracture;
 use std::str::FromStr;
 
 use shatter_geom::shapes::Shape;
@@ -423,9 +424,47 @@ fn object(ctx: &Ctx, key: &str, o: &ObjectEntry) -> Result<ObjectSpec, SimError>
             .map(|m| word(ctx, &format!("{key}.bond_model"), m))
             .transpose()?,
         anchored: o.anchored.unwrap_or(false),
+        runtime: runtime_fracture(ctx, key, o)?,
     };
     spec.validate(key)?;
     Ok(spec)
+}
+
+/// The object's runtime-fracture keys: `fracture`, `fracture_impulse`, `depth`,
+/// `min_size`.
+fn runtime_fracture(ctx: &Ctx, key: &str, o: &ObjectEntry) -> Result<RuntimeFracture, SimError> {
+    let d = RuntimeFracture::default();
+    let min_size = match &o.min_size {
+        None => d.min_size,
+        Some(v) if v.get_ref().is_finite() && *v.get_ref() >= 0.0 => *v.get_ref(),
+        Some(v) => {
+            return Err(SimError::invalid(
+                ctx.key(&format!("{key}.min_size"), v),
+                format!("must be a number of metres >= 0, got {}", v.get_ref()),
+            ));
+        }
+    };
+    let depth = count(ctx, &format!("{key}.depth"), &o.depth, 1, d.depth)?;
+    if depth > crate::runtime::MAX_DEPTH {
+        let span = o.depth.as_ref().map_or_else(
+            || format!("{key}.depth"),
+            |v| ctx.key(&format!("{key}.depth"), v),
+        );
+        return Err(SimError::invalid(
+            span,
+            format!("must be 1..={}, got {depth}", crate::runtime::MAX_DEPTH),
+        ));
+    }
+    Ok(RuntimeFracture {
+        timing: opt_word(ctx, &format!("{key}.fracture"), &o.fracture)?.unwrap_or(d.timing),
+        impulse: o
+            .fracture_impulse
+            .as_ref()
+            .map(|v| positive(ctx, &format!("{key}.fracture_impulse"), v))
+            .transpose()?,
+        depth,
+        min_size,
+    })
 }
 
 fn projectile(

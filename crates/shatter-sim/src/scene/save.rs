@@ -4,7 +4,9 @@ use glam::EulerRot;
 use toml::Spanned;
 
 use crate::error::SimError;
+use crate::material::{MethodKind, Pattern};
 use crate::object::FractureSource;
+use crate::runtime::FractureTiming;
 use crate::scene::file::{ExplosionEntry, ObjectEntry, ProjectileEntry, SceneFile, WorldSection};
 use crate::world::World;
 use crate::world::state::Action;
@@ -31,7 +33,12 @@ impl World {
             ..SceneFile::default()
         };
         for (id, record) in &self.objects {
+            if record.parent.is_some() {
+                // Cut at runtime: the object it came from is saved whole.
+                continue;
+            }
             let spec = &record.spec;
+            let on_impact = spec.runtime.timing == FractureTiming::OnImpact;
             let (shape, mesh, params) = match &spec.source {
                 FractureSource::Shape { shape, params } => {
                     (Some(sp(shape.to_string())), None, params)
@@ -49,14 +56,18 @@ impl World {
                 name: Some(spec.name.clone()),
                 shape,
                 mesh,
-                method: Some(sp(params
-                    .method
-                    .unwrap_or(spec.material.method)
-                    .to_string())),
-                pattern: Some(sp(params
-                    .pattern
-                    .unwrap_or(spec.material.pattern)
-                    .to_string())),
+                // An on_impact object is cut by radial Voronoi cells (the only ones it
+                // accepts), whatever its material's default method.
+                method: Some(sp(if on_impact {
+                    MethodKind::Voronoi.to_string()
+                } else {
+                    params.method.unwrap_or(spec.material.method).to_string()
+                })),
+                pattern: Some(sp(if on_impact {
+                    Pattern::Radial.to_string()
+                } else {
+                    params.pattern.unwrap_or(spec.material.pattern).to_string()
+                })),
                 pieces: Some(sp(params.pieces as i64)),
                 grid: Some(sp(params.grid.map(i64::from))),
                 grid_voids: (!params.grid_voids.is_empty())
@@ -78,6 +89,10 @@ impl World {
                 scale: Some(sp(spec.scale.to_array())),
                 bond_model: spec.bond_model.map(|m| sp(m.name().to_string())),
                 anchored: Some(spec.anchored),
+                fracture: Some(sp(spec.runtime.timing.to_string())),
+                fracture_impulse: spec.runtime.impulse.map(sp),
+                depth: Some(sp(i64::from(spec.runtime.depth))),
+                min_size: Some(sp(spec.runtime.min_size)),
             });
         }
         for (at, action) in &self.schedule {

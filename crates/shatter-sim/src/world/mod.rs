@@ -2,6 +2,7 @@
 
 mod query;
 mod run;
+mod runtime_step;
 mod settings;
 pub(crate) mod state;
 mod step;

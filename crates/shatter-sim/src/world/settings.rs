@@ -83,6 +83,11 @@ pub struct Stats {
     pub debris_removed: usize,
     /// Wall-clock milliseconds of the last step.
     pub last_step_ms: f64,
+    /// Runtime cuts applied since start (an `on_impact` object's first cut, fragments
+    /// cut again).
+    pub runtime_fractures: usize,
+    /// The deepest fracture level reached by a runtime cut (0: none yet).
+    pub max_depth: u32,
 }
 
 /// Something noteworthy that happened during a step.
@@ -105,6 +110,28 @@ pub enum SimEvent {
         cause: BreakCause,
         /// How many.
         count: usize,
+    },
+    /// A fragment was cut at runtime into a new object.
+    Fractured {
+        /// The object the fragment belonged to.
+        object: u32,
+        /// The fragment.
+        fragment: u32,
+        /// The new object holding the pieces.
+        into: u32,
+        /// How many pieces.
+        fragments: usize,
+        /// Their fracture level.
+        level: u32,
+    },
+    /// A runtime cut failed; the fragment stays whole and is not cut again.
+    FractureFailed {
+        /// The object.
+        object: u32,
+        /// The fragment.
+        fragment: u32,
+        /// Why.
+        reason: String,
     },
 }
 

@@ -12,7 +12,11 @@ use crate::bonds::tags::{Kind, tag};
 use crate::bonds::{clusters, joints};
 use crate::error::SimError;
 use crate::object::prepare::{prepare, resolve_fracture};
-use crate::object::{BondModel, ExplosionSpec, ObjectSpec, Prepared, ProjectileSpec};
+use crate::object::{
+    BondModel, ExplosionSpec, FractureSource, ObjectSpec, Prepared, ProjectileSpec,
+};
+use crate::runtime::FractureTiming;
+use crate::world::runtime_step::PendingCut;
 use crate::world::settings::{SimEvent, Stats, WorldSettings};
 
 /// Identifies a breakable object in a [`World`].
@@ -36,6 +40,42 @@ pub(crate) struct ObjectRecord {
     pub spec: ObjectSpec,
     pub prepared: Arc<Prepared>,
     pub live: Option<LiveObject>,
+    /// The object this one was cut from at runtime (`None`: added by the user). Cut
+    /// objects go on reset.
+    pub parent: Option<ObjectId>,
+    /// Fracture level of the fragments (see [`World::object_level`]).
+    pub level: u32,
+    /// Pieces and seed of the runtime cuts of this object's line.
+    pub cut_pieces: u32,
+    pub cut_seed: u64,
+    /// Fragments whose cut failed (not tried again).
+    pub uncuttable: std::collections::BTreeSet<u32>,
+}
+
+impl ObjectRecord {
+    /// The record of an object the user added.
+    fn added(spec: ObjectSpec, prepared: Arc<Prepared>) -> ObjectRecord {
+        let (cut_pieces, cut_seed) = match &spec.source {
+            FractureSource::Shape { params, .. } | FractureSource::MeshFile { params, .. } => {
+                (params.pieces, params.seed)
+            }
+            FractureSource::Prebuilt(_) => {
+                let d = crate::object::FractureParams::default();
+                (d.pieces, d.seed)
+            }
+        };
+        let level = u32::from(spec.runtime.timing != FractureTiming::OnImpact);
+        ObjectRecord {
+            spec,
+            prepared,
+            live: None,
+            parent: None,
+            level,
+            cut_pieces,
+            cut_seed,
+            uncuttable: Default::default(),
+        }
+    }
 }
 
 /// A fired projectile.
@@ -90,6 +130,8 @@ pub struct World {
     pub(crate) retired: [usize; 3],
     /// Per object, its broken-bond counts at the last [`SimEvent::BondsBroken`] report.
     pub(crate) reported: BTreeMap<u32, [usize; 3]>,
+    /// Runtime cuts under way.
+    pub(crate) cuts: Vec<PendingCut>,
 }
 
 impl World {
@@ -110,6 +152,7 @@ impl World {
             debris: Default::default(),
             retired: [0; 3],
             reported: BTreeMap::new(),
+            cuts: Vec::new(),
         };
         world.rebuild();
         world
@@ -135,6 +178,12 @@ impl World {
             self.settings.solver_iterations.max(1);
         self.physics = physics;
         self.ground = None;
+        // Objects cut at runtime go; the ones they were cut from come back whole. A cut
+        // under way is dropped (its thread finishes on its own).
+        self.objects.retain(|_, r| r.parent.is_none());
+        self.cuts.clear();
+        // ... and their ids are given again, so a run after a reset repeats the first.
+        self.next_id = self.objects.keys().last().map_or(0, |id| id.0 + 1);
         if self.settings.ground {
             let s = self.settings.ground_size;
             let ground = self.physics.insert_body(
@@ -224,23 +273,26 @@ impl World {
     /// scaled now; its bodies appear at once in its initial state.
     pub fn add_object(&mut self, spec: ObjectSpec) -> Result<ObjectId, SimError> {
         let id = ObjectId(self.next_id);
-        let prepared = Self::prepare_spec(&spec, &format!("object {}", id.0))?;
+        let prepared = self.prepare_spec(&spec, &format!("object {}", id.0))?;
         self.next_id += 1;
-        self.objects.insert(
-            id,
-            ObjectRecord {
-                spec,
-                prepared,
-                live: None,
-            },
-        );
+        self.objects.insert(id, ObjectRecord::added(spec, prepared));
         self.build_object(id);
         self.refresh();
         Ok(id)
     }
 
-    fn prepare_spec(spec: &ObjectSpec, key: &str) -> Result<Arc<Prepared>, SimError> {
+    fn prepare_spec(&self, spec: &ObjectSpec, key: &str) -> Result<Arc<Prepared>, SimError> {
         spec.validate(key)?;
+        let model = spec.bond_model.unwrap_or(self.settings.bond_model);
+        let runtime = spec.runtime;
+        if model == BondModel::Joints
+            && (runtime.timing == FractureTiming::OnImpact || runtime.depth > 1)
+        {
+            return Err(SimError::invalid(
+                format!("{key}.fracture"),
+                "runtime fracture (on_impact, depth > 1) needs the clusters bond model",
+            ));
+        }
         let fracture = resolve_fracture(spec, key)?;
         let prepared = prepare(&fracture, spec.scale, spec.material.density, spec.anchored);
         if prepared.pieces.iter().all(|p| p.is_empty()) {
@@ -261,11 +313,11 @@ impl World {
         if !self.objects.contains_key(&id) {
             return Err(SimError::NoSuchObject(id.0));
         }
-        let prepared = Self::prepare_spec(&spec, &format!("object {}", id.0))?;
+        let prepared = self.prepare_spec(&spec, &format!("object {}", id.0))?;
+        self.remove_descendants(id);
         self.remove_live(id);
         if let Some(record) = self.objects.get_mut(&id) {
-            record.spec = spec;
-            record.prepared = prepared;
+            *record = ObjectRecord::added(spec, prepared);
         }
         self.build_object(id);
         self.refresh();
@@ -277,10 +329,27 @@ impl World {
         if !self.objects.contains_key(&id) {
             return Err(SimError::NoSuchObject(id.0));
         }
+        self.remove_descendants(id);
         self.remove_live(id);
         self.objects.remove(&id);
         self.refresh();
         Ok(())
+    }
+
+    /// Removes the objects cut from `id` at runtime, and theirs.
+    fn remove_descendants(&mut self, id: ObjectId) {
+        let children: Vec<ObjectId> = self
+            .objects
+            .iter()
+            .filter(|(_, r)| r.parent == Some(id))
+            .map(|(c, _)| *c)
+            .collect();
+        for c in children {
+            self.remove_descendants(c);
+            self.remove_live(c);
+            self.objects.remove(&c);
+        }
+        self.cuts.retain(|c| c.object != id);
     }
 
     /// The spec of object `id`.

@@ -23,6 +23,9 @@ pub(crate) struct ContactHit {
     pub collider2: ColliderHandle,
     pub impulse: Vec3,
     pub force: f32,
+    /// Where it touched (world frame): the contact points' mean, weighted by their
+    /// impulses when the solver reports any.
+    pub point: Option<Vec3>,
 }
 
 /// Collects Rapier's contact-force events during a step.
@@ -43,7 +46,7 @@ impl EventHandler for HitCollector {
         &self,
         _dt: Real,
         _bodies: &RigidBodySet,
-        _colliders: &ColliderSet,
+        colliders: &ColliderSet,
         contact_pair: &ContactPair,
         total_force_magnitude: Real,
     ) {
@@ -52,6 +55,7 @@ impl EventHandler for HitCollector {
             collider2: contact_pair.collider2,
             impulse: contact_pair.total_impulse(),
             force: total_force_magnitude,
+            point: contact_point(colliders, contact_pair),
         };
         if let Ok(mut hits) = self.0.lock() {
             hits.push(hit);
@@ -59,6 +63,30 @@ impl EventHandler for HitCollector {
     }
 
     fn handle_soft_body_tear_event(&self, _soft_bodies: &SoftBodySet, _event: &SoftBodyTearEvent) {}
+}
+
+/// The contact points' mean in the world frame, weighted by their normal impulses (plain
+/// mean when they are all zero).
+fn contact_point(colliders: &ColliderSet, pair: &ContactPair) -> Option<Vec3> {
+    let pose = colliders.get(pair.collider1)?.position();
+    let (mut sum, mut weight, mut plain, mut n) = (Vec3::ZERO, 0.0f32, Vec3::ZERO, 0usize);
+    for manifold in pair.manifolds() {
+        for point in &manifold.points {
+            let p = pose.transform_point(point.local_p1);
+            let w = point.data.impulse.max(0.0);
+            sum += p * w;
+            weight += w;
+            plain += p;
+            n += 1;
+        }
+    }
+    if weight > 0.0 {
+        Some(sum / weight)
+    } else if n > 0 {
+        Some(plain / n as f32)
+    } else {
+        None
+    }
 }
 
 impl World {
@@ -85,8 +113,10 @@ impl World {
         self.stats.time = self.stats.steps as f64 * self.settings.dt as f64;
         let hits = hits.0.into_inner().unwrap_or_default();
         self.break_joints();
+        self.start_cuts(&hits);
         self.break_clusters(&hits);
         self.break_by_stress(&hits);
+        self.finish_cuts();
         self.report_breaks();
         self.expire();
         self.guard();
