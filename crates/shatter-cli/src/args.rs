@@ -96,6 +96,18 @@ pub enum Distribution {
 }
 
 impl Distribution {
+    /// The geometry crate's distribution of the same name.
+    pub fn sampling(self) -> shatter_geom::sampling::Distribution {
+        use shatter_geom::sampling::Distribution as D;
+        match self {
+            Self::Uniform => D::Uniform,
+            Self::Ball => D::Ball,
+            Self::Sphere => D::Sphere,
+            Self::Gaussian => D::Gaussian,
+            Self::Grid => D::Grid,
+        }
+    }
+
     /// The name as typed on the command line.
     pub fn as_str(self) -> &'static str {
         match self {

@@ -13,10 +13,11 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use serde::Serialize;
 use shatter_geom::io::MeshFormat as InputFormat;
 
-use super::fracture::{
-    FractureArgs, FractureConfig, FractureReport, MeshSource, OutFormat, check_fracture,
-    fracture_timed, load_source,
+use shatter_lab::fracture::{
+    FractureConfig, FractureReport, MeshSource, check_fracture, fracture_timed, load_source,
 };
+
+use super::fracture::{FractureArgs, OutFormat};
 use crate::args::MeshFormat;
 use crate::context::Context;
 use crate::error::{CliError, ResultExt};
