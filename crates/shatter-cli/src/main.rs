@@ -10,7 +10,6 @@ mod commands;
 mod context;
 mod error;
 mod interrupt;
-mod library;
 mod points_file;
 
 use std::process::ExitCode;

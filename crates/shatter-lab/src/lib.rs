@@ -8,6 +8,8 @@
 //!   `study.csv` and its plots.
 //! - [`bench`](mod@bench): the benchmarks — creation (CSV and plots), Delaunay, fracture, step,
 //!   stress.
+//! - [`export`]: writing meshes and fractures (OBJ with MTL and textures, GLB, the
+//!   pre-fractured asset).
 //! - [`simulate`]: running a built scene headless, recording per-step statistics and the
 //!   animated glTF export, and the run's report.
 //! - What they share: [`Context`] (resource limits, the cancel/progress handle, progress
@@ -31,6 +33,7 @@ pub mod bar;
 pub mod bench;
 mod context;
 mod error;
+pub mod export;
 pub mod fracture;
 pub mod memory;
 pub mod names;

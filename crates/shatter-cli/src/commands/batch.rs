@@ -21,7 +21,6 @@ use super::fracture::{FractureArgs, OutFormat};
 use crate::args::MeshFormat;
 use crate::context::Context;
 use crate::error::{CliError, ResultExt};
-use crate::library;
 
 /// What happened to one input.
 #[derive(Debug, Serialize)]
@@ -135,7 +134,7 @@ fn one(
         check_fracture(ctx, &model.mesh, &config)?;
         let (fracture, more, millis) = fracture_timed(&model, &config)?;
         warnings.extend(more);
-        library::write_fracture(output, format, &fracture, &ctx.progress)?;
+        shatter_lab::export::write_fracture(output, format, &fracture, &ctx.progress)?;
         Ok(FractureReport::new(
             &model.mesh,
             &fracture,

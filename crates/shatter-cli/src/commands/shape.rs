@@ -10,7 +10,6 @@ use shatter_geom::shapes::Shape;
 use crate::args::{MeshFormat, check_writable, parse_vec3, validate_scale};
 use crate::context::Context;
 use crate::error::CliError;
-use crate::library;
 use shatter_lab::fracture;
 
 /// Arguments of `shatter shape`.
@@ -52,7 +51,7 @@ impl ShapeArgs {
 pub fn run(args: &ShapeArgs, ctx: &Context) -> Result<(), CliError> {
     let config = args.validate()?;
     let mesh = fracture::scaled(fracture::builtin_shape(config.name)?, config.scale);
-    library::write_mesh(&config.out, config.format, &mesh, &ctx.progress)?;
+    shatter_lab::export::write_mesh(&config.out, config.format, &mesh, &ctx.progress)?;
     println!(
         "wrote {} ({} vertices, {} triangles, volume {}) to {}",
         config.name,

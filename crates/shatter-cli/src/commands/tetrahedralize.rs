@@ -12,7 +12,6 @@ use shatter_geom::delaunay::{self, Tetrahedralization};
 use crate::args::{Distribution, check_writable};
 use crate::context::Context;
 use crate::error::{CliError, ResultExt};
-use crate::library;
 use crate::points_file::read_points_file;
 use shatter_lab::fracture::EstimateReport;
 use shatter_lab::{memory, output};
@@ -153,7 +152,7 @@ pub fn run(args: &TetrahedralizeArgs, ctx: &Context) -> Result<(), CliError> {
         } => {
             let estimate = check_points(ctx, &format!("--random {n}"), *n as u64)?;
             (
-                library::random_points(*distribution, *n, *seed)?,
+                shatter_geom::sampling::sample(distribution.sampling(), *n, *seed),
                 format!("{n} random {} points", distribution.as_str()),
                 estimate,
             )

@@ -1,28 +1,44 @@
-//! The CLI's writers of meshes and fractures (OBJ with MTL and textures, GLB, the
-//! pre-fractured asset) and its random points, with library errors mapped to exit codes
-//! (bad input 2, internal 1). Loading, repairing and fracturing a mesh is
-//! `shatter_lab::fracture`'s.
+//! Writing meshes and fractures: OBJ (with its MTL and the textures next to it) or GLB,
+//! and the pre-fractured asset (a GLB with the `SHATTER_fracture` extension), each file
+//! through a temporary file renamed into place. A failure to write is bad input (the
+//! user's path: a full disk, a race); an export error from the writer is internal.
 
 use std::path::Path;
 
+use shatter_geom::TriMesh;
 use shatter_geom::fracture::Fracture;
 use shatter_geom::io::{self, ExportObject};
 use shatter_geom::model::Material;
 use shatter_geom::progress::Progress;
-use shatter_geom::sampling;
-use shatter_geom::{DVec3, TriMesh};
-use shatter_lab::output;
 
-use crate::args::{Distribution, MeshFormat};
-use crate::error::CliError;
+use crate::error::LabError;
+use crate::output;
 
-/// `n` random points from `distribution`, reproducible from `seed`.
-pub fn random_points(
-    distribution: Distribution,
-    n: usize,
-    seed: u64,
-) -> Result<Vec<DVec3>, CliError> {
-    Ok(sampling::sample(distribution.sampling(), n, seed))
+/// A mesh file format the writers here write.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshFormat {
+    /// Wavefront OBJ.
+    Obj,
+    /// Binary glTF.
+    Glb,
+}
+
+impl MeshFormat {
+    /// The format of an output path, from its extension (case-insensitive).
+    pub fn from_output_path(path: &Path) -> Result<Self, LabError> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        match ext.as_deref() {
+            Some("obj") => Ok(Self::Obj),
+            Some("glb") => Ok(Self::Glb),
+            _ => Err(LabError::input(format!(
+                "{}: unknown output format; use a .obj or .glb file name",
+                path.display()
+            ))),
+        }
+    }
 }
 
 /// Writes one mesh (no interior faces).
@@ -31,7 +47,7 @@ pub fn write_mesh(
     format: MeshFormat,
     mesh: &TriMesh,
     progress: &Progress,
-) -> Result<(), CliError> {
+) -> Result<(), LabError> {
     let name = path
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
@@ -49,7 +65,7 @@ pub fn write_fracture(
     format: MeshFormat,
     fracture: &Fracture,
     progress: &Progress,
-) -> Result<(), CliError> {
+) -> Result<(), LabError> {
     if format == MeshFormat::Glb {
         return write_fracture_asset(path, fracture, &io::FractureAssetMeta::default(), progress);
     }
@@ -66,13 +82,13 @@ pub fn write_fracture_asset(
     fracture: &Fracture,
     meta: &io::FractureAssetMeta,
     progress: &Progress,
-) -> Result<(), CliError> {
+) -> Result<(), LabError> {
     output::via_temp_path(path, progress, |temp| {
         io::save_fracture_glb(temp, fracture, meta).map_err(|e| match e {
             io::MeshIoError::Io { source, .. } => {
-                CliError::input(format!("{}: cannot write: {source}", path.display()))
+                LabError::input(format!("{}: cannot write: {source}", path.display()))
             }
-            other => CliError::internal(format!("{}: export failed: {other}", path.display())),
+            other => LabError::internal(format!("{}: export failed: {other}", path.display())),
         })
     })
 }
@@ -85,7 +101,7 @@ fn save(
     format: MeshFormat,
     objects: &[ExportObject<'_>],
     progress: &Progress,
-) -> Result<(), CliError> {
+) -> Result<(), LabError> {
     save_with(path, format, objects, None, progress)
 }
 
@@ -97,21 +113,21 @@ fn save_with(
     objects: &[ExportObject<'_>],
     materials: Option<&[Material]>,
     progress: &Progress,
-) -> Result<(), CliError> {
+) -> Result<(), LabError> {
     let materials = materials.filter(|m| !m.is_empty());
     let mapped = |e: io::MeshIoError| match e {
         // Failing to create or write the file: the user's path (checked up front, so
         // this is rare: a full disk, a race).
         io::MeshIoError::Io { source, .. } => {
-            CliError::input(format!("{}: cannot write: {source}", path.display()))
+            LabError::input(format!("{}: cannot write: {source}", path.display()))
         }
         // Anything else means shatter produced an inconsistent mesh: a bug.
-        other => CliError::internal(format!("{}: export failed: {other}", path.display())),
+        other => LabError::internal(format!("{}: export failed: {other}", path.display())),
     };
     let create = |temp: &Path| {
         std::fs::File::create(temp)
             .map(std::io::BufWriter::new)
-            .map_err(|e| CliError::input(format!("{}: cannot write: {e}", path.display())))
+            .map_err(|e| LabError::input(format!("{}: cannot write: {e}", path.display())))
     };
     match format {
         MeshFormat::Obj => {
@@ -149,7 +165,7 @@ fn save_with(
                 io::write_obj_with_materials(&mut out, objects, materials, Some(&mtl_name))
                     .map_err(mapped)?;
                 std::io::Write::flush(&mut out)
-                    .map_err(|e| CliError::input(format!("{}: cannot write: {e}", path.display())))
+                    .map_err(|e| LabError::input(format!("{}: cannot write: {e}", path.display())))
             })
         }
         MeshFormat::Glb => output::via_temp_path(path, progress, |temp| {
@@ -160,7 +176,46 @@ fn save_with(
             }
             .map_err(mapped)?;
             std::io::Write::flush(&mut out)
-                .map_err(|e| CliError::input(format!("{}: cannot write: {e}", path.display())))
+                .map_err(|e| LabError::input(format!("{}: cannot write: {e}", path.display())))
         }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+    use super::*;
+    use shatter_geom::shapes::Shape;
+
+    #[test]
+    fn output_format_comes_from_the_extension() {
+        assert_eq!(
+            MeshFormat::from_output_path(Path::new("a/b.OBJ")).unwrap(),
+            MeshFormat::Obj
+        );
+        assert_eq!(
+            MeshFormat::from_output_path(Path::new("b.glb")).unwrap(),
+            MeshFormat::Glb
+        );
+        assert!(MeshFormat::from_output_path(Path::new("b.stl")).is_err());
+        assert!(MeshFormat::from_output_path(Path::new("b")).is_err());
+    }
+
+    #[test]
+    fn a_mesh_is_written_as_obj_with_its_mtl_and_as_glb() {
+        let dir = tempfile::tempdir().unwrap();
+        let cube = Shape::Cube.mesh();
+        let obj = dir.path().join("cube.obj");
+        write_mesh(&obj, MeshFormat::Obj, &cube, &Progress::none()).unwrap();
+        let text = std::fs::read_to_string(&obj).unwrap();
+        assert!(text.contains("mtllib cube.mtl"), "{text}");
+        assert_eq!(text.lines().filter(|l| l.starts_with("f ")).count(), 12);
+        assert!(dir.path().join("cube.mtl").is_file());
+        let glb = dir.path().join("cube.glb");
+        write_mesh(&glb, MeshFormat::Glb, &cube, &Progress::none()).unwrap();
+        assert_eq!(&std::fs::read(&glb).unwrap()[..4], b"glTF");
+        let missing = dir.path().join("none/cube.obj");
+        let e = write_mesh(&missing, MeshFormat::Obj, &cube, &Progress::none()).unwrap_err();
+        assert!(matches!(e, LabError::Input(_)), "{e:?}");
     }
 }
