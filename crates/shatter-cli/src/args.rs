@@ -10,6 +10,7 @@ use clap::ValueEnum;
 use shatter_geom::DVec3;
 
 use crate::error::CliError;
+pub use shatter_lab::export::MeshFormat;
 
 /// Parses `X,Y,Z` (three comma-separated finite numbers) into a vector.
 pub fn parse_vec3(text: &str) -> Result<DVec3, String> {
@@ -96,6 +97,18 @@ pub enum Distribution {
 }
 
 impl Distribution {
+    /// The geometry crate's distribution of the same name.
+    pub fn sampling(self) -> shatter_geom::sampling::Distribution {
+        use shatter_geom::sampling::Distribution as D;
+        match self {
+            Self::Uniform => D::Uniform,
+            Self::Ball => D::Ball,
+            Self::Sphere => D::Sphere,
+            Self::Gaussian => D::Gaussian,
+            Self::Grid => D::Grid,
+        }
+    }
+
     /// The name as typed on the command line.
     pub fn as_str(self) -> &'static str {
         match self {
@@ -104,33 +117,6 @@ impl Distribution {
             Self::Sphere => "sphere",
             Self::Gaussian => "gaussian",
             Self::Grid => "grid",
-        }
-    }
-}
-
-/// A mesh file format the CLI can write.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum MeshFormat {
-    /// Wavefront OBJ.
-    Obj,
-    /// Binary glTF.
-    Glb,
-}
-
-impl MeshFormat {
-    /// The format of an output path, from its extension (case-insensitive).
-    pub fn from_output_path(path: &Path) -> Result<Self, CliError> {
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase);
-        match ext.as_deref() {
-            Some("obj") => Ok(Self::Obj),
-            Some("glb") => Ok(Self::Glb),
-            _ => Err(CliError::input(format!(
-                "{}: unknown output format; use a .obj or .glb file name",
-                path.display()
-            ))),
         }
     }
 }
@@ -216,20 +202,6 @@ mod tests {
             validate_scale(Some(DVec3::new(1.0, 2.0, 3.0))).unwrap(),
             DVec3::new(1.0, 2.0, 3.0)
         );
-    }
-
-    #[test]
-    fn output_format_comes_from_the_extension() {
-        assert_eq!(
-            MeshFormat::from_output_path(Path::new("a/b.OBJ")).unwrap(),
-            MeshFormat::Obj
-        );
-        assert_eq!(
-            MeshFormat::from_output_path(Path::new("b.glb")).unwrap(),
-            MeshFormat::Glb
-        );
-        assert!(MeshFormat::from_output_path(Path::new("b.stl")).is_err());
-        assert!(MeshFormat::from_output_path(Path::new("b")).is_err());
     }
 
     #[test]

@@ -17,6 +17,16 @@ pub const EXIT_INTERRUPTED: u8 = 130;
 pub const INTERRUPTED_MESSAGE: &str =
     "interrupted (Ctrl-C): stopped before the end; no output file was written";
 
+impl From<shatter_lab::LabError> for CliError {
+    fn from(e: shatter_lab::LabError) -> Self {
+        match e {
+            shatter_lab::LabError::Input(m) => Self::input(m),
+            shatter_lab::LabError::Internal(m) => Self::internal(m),
+            shatter_lab::LabError::Interrupted => Self::Interrupted,
+        }
+    }
+}
+
 impl From<shatter_geom::progress::Cancelled> for CliError {
     fn from(_: shatter_geom::progress::Cancelled) -> Self {
         Self::Interrupted
@@ -96,6 +106,18 @@ mod tests {
         assert_eq!(CliError::input("bad").exit_code(), 2);
         assert_eq!(CliError::internal("bug").exit_code(), 1);
         assert_eq!(CliError::Interrupted.exit_code(), 130);
+    }
+
+    #[test]
+    fn lab_errors_keep_their_kind_and_message() {
+        use shatter_lab::LabError;
+        let e = CliError::from(LabError::input("--runs must be at least 1"));
+        assert_eq!(
+            (e.exit_code(), e.to_string().as_str()),
+            (2, "--runs must be at least 1")
+        );
+        assert_eq!(CliError::from(LabError::internal("bug")).exit_code(), 1);
+        assert_eq!(CliError::from(LabError::Interrupted).exit_code(), 130);
     }
 
     #[test]

@@ -6,14 +6,10 @@
 //! [`error`]).
 
 mod args;
-mod bar;
 mod commands;
 mod context;
 mod error;
 mod interrupt;
-mod library;
-mod memory;
-mod output;
 mod points_file;
 
 use std::process::ExitCode;
@@ -112,7 +108,7 @@ fn main() -> ExitCode {
     std::panic::set_hook(Box::new(|info| {
         eprintln!("error: internal error (a bug in shatter, please report it): {info}");
     }));
-    let ctx = Context::new(cli.no_limits);
+    let ctx = context::new(cli.no_limits);
     match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| run(&cli.command, &ctx))) {
         Ok(Ok(())) => ExitCode::SUCCESS,
         Ok(Err(e)) => {

@@ -13,14 +13,14 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use serde::Serialize;
 use shatter_geom::io::MeshFormat as InputFormat;
 
-use super::fracture::{
-    FractureArgs, FractureConfig, FractureReport, MeshSource, OutFormat, check_fracture,
-    fracture_timed, load_source,
+use shatter_lab::fracture::{
+    FractureConfig, FractureReport, MeshSource, check_fracture, fracture_timed, load_source,
 };
+
+use super::fracture::{FractureArgs, OutFormat};
 use crate::args::MeshFormat;
 use crate::context::Context;
 use crate::error::{CliError, ResultExt};
-use crate::library;
 
 /// What happened to one input.
 #[derive(Debug, Serialize)]
@@ -134,7 +134,7 @@ fn one(
         check_fracture(ctx, &model.mesh, &config)?;
         let (fracture, more, millis) = fracture_timed(&model, &config)?;
         warnings.extend(more);
-        library::write_fracture(output, format, &fracture, &ctx.progress)?;
+        shatter_lab::export::write_fracture(output, format, &fracture, &ctx.progress)?;
         Ok(FractureReport::new(
             &model.mesh,
             &fracture,

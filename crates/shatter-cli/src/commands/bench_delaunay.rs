@@ -1,15 +1,13 @@
-//! `shatter bench delaunay`: time the tetrahedralization of random point sets.
-
-use std::time::Instant;
+//! `shatter bench delaunay`: time the tetrahedralization of random point sets (each size
+//! measured by `shatter_lab::bench::delaunay`, in a fresh process of its own when there
+//! are several).
 
 use clap::Args;
-use serde::{Deserialize, Serialize};
-use shatter_geom::delaunay;
+use shatter_lab::bench::delaunay::{self, Report, Row};
+use shatter_lab::memory;
 
 use crate::args::{Distribution, parse_size};
 use crate::error::{CliError, ResultExt};
-use crate::library;
-use crate::memory;
 
 /// Arguments of `shatter bench delaunay`.
 #[derive(Debug, Args)]
@@ -31,35 +29,6 @@ pub struct BenchDelaunayArgs {
     /// process, so that one size's freed memory does not hide the next one's peak).
     #[arg(long, hide = true)]
     pub in_process: bool,
-}
-
-/// One measured size.
-#[derive(Debug, Serialize, Deserialize)]
-struct Row {
-    points: usize,
-    unique_points: usize,
-    tetrahedra: usize,
-    millis: f64,
-    points_per_second: f64,
-    /// Peak RSS during the tetrahedralization minus the RSS just before it (the points
-    /// were already allocated), per point. `None` where `/proc` is unavailable.
-    peak_bytes_per_point: Option<f64>,
-    /// Heap bytes the result holds once shrunk to fit (its packed tetrahedra,
-    /// `representative`, `duplicates`), per point; measured after the peak.
-    result_bytes_per_point: f64,
-}
-
-/// The `--json` report.
-#[derive(Debug, Serialize, Deserialize)]
-struct Report {
-    distribution: String,
-    seed: u64,
-    rows: Vec<Row>,
-    /// Process-wide peak RSS (VmHWM) at the end, in bytes.
-    process_peak_rss_bytes: Option<u64>,
-    /// Whether each row's peak was measured alone (`/proc/self/clear_refs` reset worked)
-    /// or is process-wide.
-    per_row_peak: bool,
 }
 
 /// Runs `shatter bench delaunay`.
@@ -127,29 +96,11 @@ pub fn run(args: &BenchDelaunayArgs) -> Result<(), CliError> {
 /// Times and measures one size in this process; also says whether the peak was reset
 /// for it.
 fn measure(args: &BenchDelaunayArgs, n: usize) -> Result<(Row, bool), CliError> {
-    let points = library::random_points(args.distribution, n, args.seed)?;
-    let reset = memory::reset_peak();
-    let before = memory::current_rss_bytes();
-    let start = Instant::now();
-    let mut tets = delaunay::tetrahedralize(&points)
-        .input_err(format!("{n} random {} points", args.distribution.as_str()))?;
-    let millis = start.elapsed().as_secs_f64() * 1e3;
-    let peak = memory::peak_rss_bytes();
-    let peak_bytes_per_point = match (before, peak) {
-        (Some(b), Some(p)) => Some(p.saturating_sub(b) as f64 / n as f64),
-        _ => None,
-    };
-    tets.shrink_to_fit();
-    let row = Row {
-        points: n,
-        unique_points: tets.unique_points,
-        tetrahedra: tets.len(),
-        millis,
-        points_per_second: n as f64 / (millis / 1e3).max(1e-9),
-        peak_bytes_per_point,
-        result_bytes_per_point: tets.heap_bytes() as f64 / n as f64,
-    };
-    Ok((row, reset))
+    Ok(delaunay::measure(
+        args.distribution.sampling(),
+        n,
+        args.seed,
+    )?)
 }
 
 /// Measures one size in a fresh `shatter bench delaunay --in-process` and reads its report.

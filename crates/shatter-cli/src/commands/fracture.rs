@@ -1,22 +1,22 @@
 //! `shatter fracture`: cut a mesh into bonded fragments.
 
 use std::path::PathBuf;
-use std::time::Instant;
 
 use clap::{ArgGroup, Args, ValueEnum};
-use serde::Serialize;
-use shatter_geom::budget::{Estimate, format_count};
-use shatter_geom::fracture::{Fracture, MethodKind, Pattern, Placement};
-use shatter_geom::model::Model;
+use shatter_geom::DVec3;
+use shatter_geom::fracture::{MethodKind, Pattern, Placement};
 use shatter_geom::shapes::Shape;
-use shatter_geom::{DVec3, TriMesh};
+use shatter_lab::fracture::{
+    FractureConfig, FractureReport, MeshSource, MethodConfig, VoronoiSeeds, check_fracture,
+    fracture_timed, load_source,
+};
+use shatter_lab::memory;
 
 use crate::args::{MeshFormat, check_writable, parse_cells, parse_vec3, validate_scale};
-use crate::commands::tetrahedralize::{EstimateReport, check_points_file};
+use crate::commands::tetrahedralize::check_points_file;
 use crate::context::Context;
 use crate::error::{CliError, ResultExt};
 use crate::points_file::read_points_file;
-use crate::{library, memory};
 
 /// Arguments of `shatter fracture`.
 #[derive(Debug, Args)]
@@ -114,108 +114,6 @@ impl FractureArgs {
     /// Whether this is a batch: several inputs, a folder, or --out-dir.
     pub fn is_batch(&self) -> bool {
         self.meshes.len() > 1 || self.out_dir.is_some() || self.meshes.iter().any(|p| p.is_dir())
-    }
-}
-
-/// Where the mesh comes from.
-#[derive(Debug, Clone)]
-pub enum MeshSource {
-    /// A mesh file.
-    File(PathBuf),
-    /// A built-in shape.
-    Shape(Shape),
-}
-
-/// A validated fracture method with its parameters.
-#[derive(Debug, Clone)]
-pub enum MethodConfig {
-    /// The thesis's tetrahedra.
-    Tetra {
-        /// Random points added.
-        random_vertices: usize,
-        /// Surface vertices skipped between two taken.
-        skip: usize,
-        /// Add the centre point.
-        center: bool,
-        /// Random point placement.
-        placement: Placement,
-    },
-    /// Voronoi cells clipped to the mesh.
-    Voronoi {
-        /// Seeds: generated (count and pattern) or given.
-        seeds: VoronoiSeeds,
-        /// Impact point for the radial pattern.
-        impact: Option<DVec3>,
-    },
-    /// Plane slicing.
-    Slice {
-        /// Number of planes.
-        planes: usize,
-    },
-    /// A box cut into a regular grid of boxes (bricks).
-    Grid {
-        /// Cells along x, y and z.
-        cells: [u32; 3],
-    },
-}
-
-/// Voronoi seeds, generated or read from a file.
-#[derive(Debug, Clone)]
-pub enum VoronoiSeeds {
-    /// `count` seeds in a pattern.
-    Pattern {
-        /// Number of seeds.
-        count: usize,
-        /// Their pattern.
-        pattern: Pattern,
-    },
-    /// Given seeds.
-    Points(Vec<DVec3>),
-}
-
-/// A fully validated fracture request, shared with `shatter bench fracture`.
-#[derive(Debug, Clone)]
-pub struct FractureConfig {
-    /// The mesh.
-    pub source: MeshSource,
-    /// Its scale.
-    pub scale: DVec3,
-    /// Method and parameters.
-    pub method: MethodConfig,
-    /// Random seed.
-    pub seed: u64,
-    /// Refuse a file that is not a valid solid instead of repairing it.
-    pub strict: bool,
-}
-
-impl FractureConfig {
-    /// A one-line description of the method and its parameters.
-    pub fn describe(&self) -> String {
-        let method = match &self.method {
-            MethodConfig::Tetra {
-                random_vertices,
-                skip,
-                center,
-                placement,
-            } => format!(
-                "tetra, {random_vertices} random vertices ({placement:?}), skip {skip}, center {center}"
-            ),
-            MethodConfig::Voronoi { seeds, impact } => {
-                let seeds = match seeds {
-                    VoronoiSeeds::Pattern { count, pattern } => {
-                        format!("{count} {pattern:?} seeds")
-                    }
-                    VoronoiSeeds::Points(p) => format!("{} seeds from a file", p.len()),
-                };
-                match impact {
-                    Some(i) => format!("voronoi, {seeds}, impact {},{},{}", i.x, i.y, i.z),
-                    None => format!("voronoi, {seeds}"),
-                }
-            }
-            MethodConfig::Slice { planes } => format!("slice, {planes} planes"),
-            MethodConfig::Grid { cells: [x, y, z] } => format!("grid, {x}x{y}x{z} cells"),
-        };
-        format!("{method}, seed {}", self.seed)
     }
 }
 
@@ -352,202 +250,6 @@ impl FractureArgs {
     }
 }
 
-/// The `--json` report.
-#[derive(Debug, Serialize)]
-pub struct FractureReport {
-    /// Number of fragments.
-    pub fragments: usize,
-    /// Number of bonds.
-    pub bonds: usize,
-    /// Volume of the input mesh (after scaling).
-    pub mesh_volume: f64,
-    /// Sum of the fragments' volumes.
-    pub fragments_volume: f64,
-    /// Smallest fragment volume.
-    pub min_fragment_volume: f64,
-    /// Largest fragment volume.
-    pub max_fragment_volume: f64,
-    /// Interior (cut) triangles over all fragments.
-    pub interior_triangles: usize,
-    /// Milliseconds spent in the fracture alone (no loading, no writing).
-    pub millis: f64,
-    /// Warnings (also printed on stderr).
-    pub warnings: Vec<String>,
-    /// What the resource check estimated before the fracture.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub estimate: Option<EstimateReport>,
-    /// The process's peak resident set at the end (Linux only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub peak_rss_bytes: Option<u64>,
-    /// Every bond, with `--json-bonds` only.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub bond_list: Option<Vec<BondEntry>>,
-}
-
-/// One bond of the `--json-bonds` list.
-#[derive(Debug, Serialize)]
-pub struct BondEntry {
-    /// First fragment (index into the fragments as written), `a < b`.
-    pub a: u32,
-    /// Second fragment.
-    pub b: u32,
-    /// Area of the shared face.
-    pub area: f64,
-    /// Centroid of the shared face.
-    pub centroid: [f64; 3],
-    /// Unit normal of the shared face, pointing from `a` to `b`.
-    pub normal: [f64; 3],
-}
-
-impl FractureReport {
-    /// Summarises a fracture of `mesh`.
-    pub fn new(mesh: &TriMesh, fracture: &Fracture, millis: f64, warnings: Vec<String>) -> Self {
-        let volumes = fracture.fragments.iter().map(|f| f.volume);
-        Self {
-            fragments: fracture.fragments.len(),
-            bonds: fracture.bonds.len(),
-            mesh_volume: mesh.signed_volume().abs(),
-            fragments_volume: volumes.clone().sum(),
-            min_fragment_volume: volumes.clone().fold(f64::INFINITY, f64::min),
-            max_fragment_volume: volumes.fold(0.0, f64::max),
-            interior_triangles: fracture
-                .fragments
-                .iter()
-                .map(|f| f.interior.iter().filter(|&&i| i).count())
-                .sum(),
-            millis,
-            warnings,
-            estimate: None,
-            peak_rss_bytes: None,
-            bond_list: None,
-        }
-    }
-}
-
-/// The estimate of fracturing `mesh` as `config` says, and what it is called in a
-/// refusal ("--random-vertices 4,000,000,000: a tetra fracture of 4,000,000,958 points").
-pub fn fracture_estimate(mesh: &TriMesh, config: &FractureConfig) -> (String, Estimate) {
-    let triangles = mesh.triangles.len() as u64;
-    match &config.method {
-        MethodConfig::Tetra {
-            random_vertices,
-            skip,
-            center,
-            ..
-        } => {
-            let surface = (mesh.positions.len() as u64).div_ceil(*skip as u64 + 1);
-            let points = surface
-                .saturating_add(*random_vertices as u64)
-                .saturating_add(u64::from(*center));
-            (
-                format!(
-                    "--random-vertices {random_vertices}: a tetra fracture of {} points",
-                    format_count(points)
-                ),
-                Estimate::tetra_fracture(points).with_process(),
-            )
-        }
-        MethodConfig::Voronoi { seeds, .. } => {
-            let (flag, cells) = match seeds {
-                VoronoiSeeds::Pattern { count, .. } => (format!("--pieces {count}"), *count),
-                VoronoiSeeds::Points(p) => ("--seeds-file".to_string(), p.len()),
-            };
-            (
-                format!(
-                    "{flag}: {} Voronoi cells of a {}-triangle mesh",
-                    format_count(cells as u64),
-                    format_count(triangles)
-                ),
-                Estimate::voronoi_fracture(cells as u64, triangles).with_process(),
-            )
-        }
-        MethodConfig::Slice { planes } => (
-            format!(
-                "--pieces {planes}: {} slice planes (about {} pieces)",
-                format_count(*planes as u64),
-                format_count(shatter_geom::budget::slice_pieces(*planes as u64) as u64)
-            ),
-            Estimate::slice_fracture(*planes as u64, triangles).with_process(),
-        ),
-        MethodConfig::Grid { cells } => {
-            use shatter_sim::scene::budget::{GRID_BYTES_PER_BRICK, GRID_SECONDS_PER_BRICK};
-            let bricks: f64 = cells.iter().map(|&c| f64::from(c)).product();
-            (
-                format!(
-                    "--grid {},{},{}: {} bricks",
-                    cells[0],
-                    cells[1],
-                    cells[2],
-                    format_count(bricks as u64)
-                ),
-                Estimate {
-                    bytes: bricks * GRID_BYTES_PER_BRICK,
-                    seconds: bricks * GRID_SECONDS_PER_BRICK,
-                }
-                .with_process(),
-            )
-        }
-    }
-}
-
-/// Refuses a fracture whose estimate does not fit the limits; returns the estimate.
-pub fn check_fracture(
-    ctx: &Context,
-    mesh: &TriMesh,
-    config: &FractureConfig,
-) -> Result<Estimate, CliError> {
-    let (what, estimate) = fracture_estimate(mesh, config);
-    ctx.check(&what, &estimate)?;
-    Ok(estimate)
-}
-
-/// Loads (and scales) the model a configuration names — mesh, UVs, normals, colours and
-/// materials; a built-in shape is a bare mesh — repairs a file's model (unless
-/// `strict`) and checks that its mesh is a valid solid; returns it with any warnings
-/// (the reader's, each repair's, an inward mesh flipped).
-pub fn load_source(config: &FractureConfig) -> Result<(Model, Vec<String>), CliError> {
-    let (model, origin, mut warnings): (Model, String, Vec<String>) = match &config.source {
-        MeshSource::File(path) => {
-            let loaded = library::load_model(path)?;
-            let origin = path.display().to_string();
-            let mut warnings: Vec<String> = loaded.warnings.iter().map(|w| w.to_string()).collect();
-            let model = if config.strict {
-                loaded.model
-            } else {
-                let (model, report) = library::repair(&loaded.model, &origin)?;
-                warnings.extend(
-                    report
-                        .warnings()
-                        .into_iter()
-                        .map(|w| format!("{origin}: {w}")),
-                );
-                model
-            };
-            (model, origin, warnings)
-        }
-        MeshSource::Shape(name) => (
-            Model::from_mesh(library::builtin_shape(*name)?),
-            format!("shape {name}"),
-            Vec::new(),
-        ),
-    };
-    let mut model = library::scaled_model(model, config.scale);
-    warnings.extend(library::validate_model(&mut model, &origin)?);
-    Ok((model, warnings))
-}
-
-/// Fractures an already loaded model; returns the fracture, its warnings and the time in
-/// ms (the attributes included).
-pub fn fracture_timed(
-    model: &Model,
-    config: &FractureConfig,
-) -> Result<(Fracture, Vec<String>, f64), CliError> {
-    let start = Instant::now();
-    let (fracture, warnings) = library::fracture(model, config)?;
-    let millis = start.elapsed().as_secs_f64() * 1e3;
-    Ok((fracture, warnings, millis))
-}
-
 /// Runs `shatter fracture`.
 pub fn run(args: &FractureArgs, ctx: &Context) -> Result<(), CliError> {
     args.asset.check(args.out.as_deref(), args.is_batch())?;
@@ -583,14 +285,7 @@ pub fn run(args: &FractureArgs, ctx: &Context) -> Result<(), CliError> {
     report.estimate = Some(estimate.into());
     report.peak_rss_bytes = memory::peak_rss_bytes();
     if args.json_bonds {
-        let entry = |b: &shatter_geom::fracture::Bond| BondEntry {
-            a: b.a,
-            b: b.b,
-            area: b.area,
-            centroid: b.centroid.to_array(),
-            normal: b.normal.to_array(),
-        };
-        report.bond_list = Some(fracture.bonds.iter().map(entry).collect());
+        report = report.with_bond_list(&fracture);
     }
     if args.json {
         println!(

@@ -13,7 +13,7 @@ use shatter_sim::material::{MATERIAL_NAMES, Material};
 
 use crate::args::MeshFormat;
 use crate::error::CliError;
-use crate::library;
+use shatter_lab::export;
 
 /// Which fragments a pre-fractured asset marks as anchored (held fixed).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -104,12 +104,12 @@ pub fn write(
     asset: &AssetArgs,
     progress: &Progress,
 ) -> Result<(), CliError> {
-    match format {
+    Ok(match format {
         MeshFormat::Glb => {
-            library::write_fracture_asset(path, fracture, &asset.meta(fracture), progress)
+            export::write_fracture_asset(path, fracture, &asset.meta(fracture), progress)
         }
-        MeshFormat::Obj => library::write_fracture(path, format, fracture, progress),
-    }
+        MeshFormat::Obj => export::write_fracture(path, format, fracture, progress),
+    }?)
 }
 
 /// The extension as `shatter inspect` reports it.

@@ -6,7 +6,6 @@ use clap::Args;
 use shatter_geom::io::{self, Inspection};
 
 use crate::error::{CliError, ResultExt};
-use crate::library;
 
 /// Arguments of `shatter inspect`.
 #[derive(Debug, Args)]
@@ -21,7 +20,7 @@ pub struct InspectArgs {
 
 /// Runs `shatter inspect`.
 pub fn run(args: &InspectArgs) -> Result<(), CliError> {
-    let loaded = library::load_model(&args.mesh)?;
+    let loaded = shatter_lab::fracture::load_model(&args.mesh)?;
     let report = io::inspect(&loaded);
     let extension = super::fracture_asset::inspect(&args.mesh);
     if args.json {

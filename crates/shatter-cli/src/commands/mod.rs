@@ -1,4 +1,8 @@
-//! One module per command: each has a clap `Args` struct and a `run` function.
+//! One module per command: each has a clap `Args` struct and a `run` function that
+//! validates the arguments, calls `shatter_lab` (where the work, the CSV schemas and the
+//! plots live) and prints what it returns. A new benchmark is a module of
+//! `shatter_lab::bench`, a `bench_NAME.rs` here and a variant of `main.rs`'s
+//! `BenchCommand`.
 
 pub mod batch;
 pub mod bench_creation;

@@ -10,7 +10,7 @@ use shatter_geom::shapes::Shape;
 use crate::args::{MeshFormat, check_writable, parse_vec3, validate_scale};
 use crate::context::Context;
 use crate::error::CliError;
-use crate::library;
+use shatter_lab::fracture;
 
 /// Arguments of `shatter shape`.
 #[derive(Debug, Args)]
@@ -50,8 +50,8 @@ impl ShapeArgs {
 /// Runs `shatter shape`.
 pub fn run(args: &ShapeArgs, ctx: &Context) -> Result<(), CliError> {
     let config = args.validate()?;
-    let mesh = library::scaled(library::builtin_shape(config.name)?, config.scale);
-    library::write_mesh(&config.out, config.format, &mesh, &ctx.progress)?;
+    let mesh = fracture::scaled(fracture::builtin_shape(config.name)?, config.scale);
+    shatter_lab::export::write_mesh(&config.out, config.format, &mesh, &ctx.progress)?;
     println!(
         "wrote {} ({} vertices, {} triangles, volume {}) to {}",
         config.name,

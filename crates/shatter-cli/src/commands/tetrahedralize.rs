@@ -13,7 +13,8 @@ use crate::args::{Distribution, check_writable};
 use crate::context::Context;
 use crate::error::{CliError, ResultExt};
 use crate::points_file::read_points_file;
-use crate::{library, memory, output};
+use shatter_lab::fracture::EstimateReport;
+use shatter_lab::{memory, output};
 
 /// Arguments of `shatter tetrahedralize`.
 #[derive(Debug, Args)]
@@ -96,24 +97,6 @@ struct Report {
     peak_rss_bytes: Option<u64>,
 }
 
-/// An estimate as reported in `--json`.
-#[derive(Debug, Clone, Copy, Serialize)]
-pub struct EstimateReport {
-    /// Peak memory, bytes.
-    pub bytes: f64,
-    /// Wall-clock seconds.
-    pub seconds: f64,
-}
-
-impl From<Estimate> for EstimateReport {
-    fn from(e: Estimate) -> Self {
-        Self {
-            bytes: e.bytes,
-            seconds: e.seconds,
-        }
-    }
-}
-
 /// Refuses a tetrahedralization of `points` points that would not fit the limits;
 /// `flag` names the request ("--random 3000000000"). Returns the estimate.
 pub fn check_points(ctx: &Context, flag: &str, points: u64) -> Result<Estimate, CliError> {
@@ -141,14 +124,14 @@ pub fn check_points_file(
         bytes: bytes + bytes / 6.0 * shatter_geom::budget::POINT_BYTES,
         seconds: 0.0,
     };
-    ctx.check(
+    Ok(ctx.check(
         &format!(
             "{flag} {}: reading its {} bytes",
             path.display(),
             format_count(meta.len())
         ),
         &estimate,
-    )
+    )?)
 }
 
 /// Runs `shatter tetrahedralize`.
@@ -169,7 +152,7 @@ pub fn run(args: &TetrahedralizeArgs, ctx: &Context) -> Result<(), CliError> {
         } => {
             let estimate = check_points(ctx, &format!("--random {n}"), *n as u64)?;
             (
-                library::random_points(*distribution, *n, *seed)?,
+                shatter_geom::sampling::sample(distribution.sampling(), *n, *seed),
                 format!("{n} random {} points", distribution.as_str()),
                 estimate,
             )
@@ -232,7 +215,7 @@ fn write_tets(
     tets: &Tetrahedralization,
     ctx: &Context,
 ) -> Result<(), CliError> {
-    output::write_file(path, &ctx.progress, |w| {
+    Ok(output::write_file(path, &ctx.progress, |w| {
         for (k, t) in tets.tetrahedra().enumerate() {
             if k % 65_536 == 0 && ctx.progress.is_cancelled() {
                 return Err(std::io::Error::other("interrupted"));
@@ -241,7 +224,7 @@ fn write_tets(
             writeln!(w, "{a} {b} {c} {d}")?;
         }
         w.flush()
-    })
+    })?)
 }
 
 fn first_occurrence(tets: &Tetrahedralization, i: u32) -> u32 {

@@ -1,24 +1,53 @@
 //! Writing output files so that no half-written file is ever left at the output's path:
 //! everything is written to a temporary file in the same folder (`.NAME.XXXXXX.EXT`), which
-//! is renamed over the output only once it is complete, and only if Ctrl-C did not cancel
-//! the command meanwhile. A failed or interrupted write removes the temporary file.
+//! is renamed over the output only once it is complete, and only if the progress handle
+//! was not cancelled meanwhile. A failed or interrupted write removes the temporary file.
+//!
+//! The temporary files being written are registered, so that a Ctrl-C handler that has
+//! to end the process itself can remove them first ([`remove_temp_files`]).
 
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 use shatter_geom::progress::Progress;
 
-use crate::error::CliError;
-use crate::interrupt;
+use crate::error::LabError;
+
+/// The temporary files being written now.
+static TEMP_FILES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Registers a temporary file to remove if the process is stopped ([`remove_temp_files`]).
+pub fn register_temp_file(path: &Path) {
+    if let Ok(mut files) = TEMP_FILES.lock() {
+        files.push(path.to_path_buf());
+    }
+}
+
+/// Forgets a temporary file (it was renamed or removed).
+pub fn unregister_temp_file(path: &Path) {
+    if let Ok(mut files) = TEMP_FILES.lock() {
+        files.retain(|p| p != path);
+    }
+}
+
+/// Removes every registered temporary file: for a handler about to end the process.
+pub fn remove_temp_files() {
+    if let Ok(files) = TEMP_FILES.lock() {
+        for f in files.iter() {
+            let _ = std::fs::remove_file(f);
+        }
+    }
+}
 
 /// Writes `path` through a temporary file: `write` gets the temporary file's path (for
 /// library writers that take a path, such as a plot or GLB writer) and must create it.
 /// The temporary file keeps `path`'s extension, for writers that choose the format by it.
-pub fn via_temp_path<T>(
+pub fn via_temp_path<T, E: From<LabError>>(
     path: &Path,
     progress: &Progress,
-    write: impl FnOnce(&Path) -> Result<T, CliError>,
-) -> Result<T, CliError> {
+    write: impl FnOnce(&Path) -> Result<T, E>,
+) -> Result<T, E> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
@@ -35,17 +64,17 @@ pub fn via_temp_path<T>(
         .prefix(&format!(".{stem}."))
         .suffix(&suffix)
         .tempfile_in(dir)
-        .map_err(|e| CliError::input(format!("{}: cannot write: {e}", path.display())))?
+        .map_err(|e| LabError::input(format!("{}: cannot write: {e}", path.display())))?
         .into_temp_path();
-    interrupt::register_temp_file(&temp);
+    register_temp_file(&temp);
     let result = write(&temp).and_then(|value| {
-        progress.check()?;
+        progress.check().map_err(LabError::from)?;
         Ok(value)
     });
-    interrupt::unregister_temp_file(&temp);
+    unregister_temp_file(&temp);
     let value = result?;
     temp.persist(path)
-        .map_err(|e| CliError::input(format!("{}: cannot write: {}", path.display(), e.error)))?;
+        .map_err(|e| LabError::input(format!("{}: cannot write: {}", path.display(), e.error)))?;
     Ok(value)
 }
 
@@ -54,10 +83,10 @@ pub fn write_file(
     path: &Path,
     progress: &Progress,
     write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
-) -> Result<(), CliError> {
+) -> Result<(), LabError> {
     via_temp_path(path, progress, |temp| {
         let fail =
-            |e: std::io::Error| CliError::input(format!("{}: cannot write: {e}", path.display()));
+            |e: std::io::Error| LabError::input(format!("{}: cannot write: {e}", path.display()));
         let file = std::fs::File::create(temp).map_err(fail)?;
         let mut out = std::io::BufWriter::new(file);
         write(&mut out).map_err(fail)?;
@@ -116,14 +145,24 @@ mod tests {
             assert_eq!(temp.extension().unwrap(), "glb");
             std::fs::write(temp, "complete").unwrap();
             progress.cancel();
-            Ok(())
+            Ok::<(), LabError>(())
         })
         .unwrap_err();
-        assert!(matches!(e, CliError::Interrupted));
+        assert_eq!(e, LabError::Interrupted);
         assert!(
             files_in(dir.path()).is_empty(),
             "{:?}",
             files_in(dir.path())
         );
+    }
+
+    #[test]
+    fn temp_files_are_registered_and_forgotten() {
+        let a = Path::new("/nonexistent/a.tmp");
+        let registered = || TEMP_FILES.lock().is_ok_and(|f| f.iter().any(|p| p == a));
+        register_temp_file(a);
+        assert!(registered());
+        unregister_temp_file(a);
+        assert!(!registered());
     }
 }

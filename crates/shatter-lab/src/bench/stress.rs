@@ -1,0 +1,210 @@
+//! The stress benchmark: the stress solver on a 20,097-bond graph (a 10 m × 10.2 m ×
+//! 0.6 m stone wall of 50 × 51 × 3 blocks anchored on its bottom row), one core: a cold
+//! solve, a settled (skipped) solve, the warm re-solve after a hit and the one after it,
+//! and the re-solve after a bond breaks. Milliseconds are means over the runs.
+
+use std::time::Instant;
+
+use shatter_geom::DVec3;
+use shatter_sim::stress::{BondGraph, Preconditioner, SolverSettings, StressSolver};
+use shatter_sim::testing::box_grid_fracture;
+
+use crate::context::Context;
+use crate::error::{LabError, ResultExt};
+
+/// The benchmark's options.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BenchStressOptions {
+    /// Times to repeat the measurement (fresh solver each time), 1..=1000.
+    pub runs: usize,
+    /// Most conjugate-gradient iterations per solve.
+    pub max_iterations: usize,
+    /// Relative residual at which a solve has converged, in (0, 1).
+    pub tolerance: f64,
+    /// The conjugate gradients' preconditioner.
+    pub preconditioner: Preconditioner,
+}
+
+/// One kind of solve: mean milliseconds and iterations.
+#[derive(Debug, Clone, Copy, Default, serde::Serialize)]
+pub struct Timing {
+    /// Mean wall-clock milliseconds.
+    pub ms: f64,
+    /// Mean conjugate-gradient iterations.
+    pub iterations: f64,
+    /// Whether every run converged.
+    pub converged: bool,
+    /// Largest relative residual left.
+    pub residual: f64,
+}
+
+/// What the benchmark measured.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct BenchStressReport {
+    /// Nodes of the graph.
+    pub nodes: usize,
+    /// Bonds of the graph.
+    pub bonds: usize,
+    /// Runs averaged.
+    pub runs: usize,
+    /// The preconditioner used.
+    pub preconditioner: String,
+    /// Solve from rest (zero warm start) to the tolerance.
+    pub cold: Timing,
+    /// A solve with nothing changed: the island is settled and skipped.
+    pub settled: Timing,
+    /// Warm re-solve with a 50 kN hit on one block at mid-height.
+    pub hit: Timing,
+    /// The solve after the hit (back to gravity only).
+    pub after_hit: Timing,
+    /// Warm re-solve after one bond at the base breaks (islands rebuilt).
+    pub bond_broken: Timing,
+    /// Milliseconds per iteration (cold solve).
+    pub ms_per_iteration: f64,
+}
+
+/// The benchmark graph.
+pub fn graph() -> Result<BondGraph, LabError> {
+    let fracture = box_grid_fracture([50, 51, 3], DVec3::new(10.0, 10.2, 0.6));
+    // Fragment i is at cell (x, y, z) with i = x + 50·(y + 51·z): row y = 0 is anchored.
+    BondGraph::from_fracture(&fracture, 2600.0, |i| (i / 50) % 51 == 0)
+        .internal_err("the benchmark graph is valid")
+}
+
+fn timed(
+    solver: &mut StressSolver,
+    graph: &BondGraph,
+    broken: &[bool],
+    forces: &[(u32, DVec3)],
+) -> Timing {
+    let g = DVec3::new(0.0, -9.81, 0.0);
+    let t0 = Instant::now();
+    let report = solver.solve(graph, broken, g, forces);
+    Timing {
+        ms: t0.elapsed().as_secs_f64() * 1e3,
+        iterations: report.iterations as f64,
+        converged: report.converged,
+        residual: report.residual,
+    }
+}
+
+fn mean(samples: &[Timing]) -> Timing {
+    let n = samples.len().max(1) as f64;
+    Timing {
+        ms: samples.iter().map(|t| t.ms).sum::<f64>() / n,
+        iterations: samples.iter().map(|t| t.iterations).sum::<f64>() / n,
+        converged: samples.iter().all(|t| t.converged),
+        residual: samples.iter().map(|t| t.residual).fold(0.0, f64::max),
+    }
+}
+
+/// Checks the options and runs the benchmark.
+pub fn run(options: &BenchStressOptions, ctx: &Context) -> Result<BenchStressReport, LabError> {
+    let o = options;
+    if !(o.tolerance.is_finite() && o.tolerance > 0.0 && o.tolerance < 1.0) {
+        return Err(LabError::input(format!(
+            "--tolerance must be in (0, 1), got {}",
+            o.tolerance
+        )));
+    }
+    if o.runs == 0 || o.runs > 1000 {
+        return Err(LabError::input(format!(
+            "--runs must be in 1..=1000, got {}",
+            o.runs
+        )));
+    }
+    let graph = graph()?;
+    let bonds = graph.bonds().len();
+    // A block at mid-height in the middle of the front layer, and a base bond under it.
+    let hit_node = 25 + 50 * 25;
+    let base_bond = graph
+        .bonds()
+        .iter()
+        .position(|b| b.a == 25 && b.b == 25 + 50)
+        .ok_or_else(|| LabError::internal("the benchmark graph has no base bond"))?;
+    let mut samples: [Vec<Timing>; 5] = Default::default();
+    for _ in 0..o.runs {
+        ctx.progress.check()?;
+        let settings = SolverSettings {
+            max_iterations: o.max_iterations,
+            tolerance: o.tolerance,
+            preconditioner: o.preconditioner,
+            ..SolverSettings::default()
+        };
+        let mut solver = StressSolver::new(&graph, settings);
+        let mut broken = vec![false; bonds];
+        samples[0].push(timed(&mut solver, &graph, &broken, &[]));
+        samples[1].push(timed(&mut solver, &graph, &broken, &[]));
+        let hit = [(hit_node, DVec3::new(0.0, 0.0, -50_000.0))];
+        samples[2].push(timed(&mut solver, &graph, &broken, &hit));
+        samples[3].push(timed(&mut solver, &graph, &broken, &[]));
+        broken[base_bond] = true;
+        samples[4].push(timed(&mut solver, &graph, &broken, &[]));
+    }
+    let [cold, settled, hit, after_hit, bond_broken] = samples.map(|s| mean(&s));
+    Ok(BenchStressReport {
+        nodes: graph.nodes().len(),
+        bonds,
+        runs: o.runs,
+        preconditioner: o.preconditioner.to_string(),
+        cold,
+        settled,
+        hit,
+        after_hit,
+        bond_broken,
+        ms_per_iteration: cold.ms / cold.iterations.max(1.0),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+    use super::*;
+    use shatter_geom::budget::Limits;
+
+    fn options() -> BenchStressOptions {
+        BenchStressOptions {
+            runs: 1,
+            max_iterations: SolverSettings::default().max_iterations,
+            tolerance: SolverSettings::default().tolerance,
+            preconditioner: Preconditioner::default(),
+        }
+    }
+
+    #[test]
+    fn bad_tolerance_and_runs_are_input_errors() {
+        let ctx = Context::quiet(Limits::none());
+        for (change, message) in [
+            (
+                (|o: &mut BenchStressOptions| o.tolerance = 2.0) as fn(&mut _),
+                "--tolerance must be in (0, 1), got 2",
+            ),
+            (|o| o.runs = 0, "--runs must be in 1..=1000, got 0"),
+        ] {
+            let mut o = options();
+            change(&mut o);
+            assert_eq!(run(&o, &ctx).unwrap_err(), LabError::input(message));
+        }
+    }
+
+    #[test]
+    fn the_mean_of_timings_averages_and_keeps_the_worst() {
+        let t = |ms, converged, residual| Timing {
+            ms,
+            iterations: ms * 10.0,
+            converged,
+            residual,
+        };
+        let m = mean(&[t(1.0, true, 1e-9), t(3.0, false, 1e-6)]);
+        assert_eq!((m.ms, m.iterations), (2.0, 20.0));
+        assert!(!m.converged);
+        assert_eq!(m.residual, 1e-6);
+    }
+
+    #[test]
+    fn the_graph_is_the_50_by_51_by_3_wall() {
+        let g = graph().unwrap();
+        assert_eq!(g.nodes().len(), 50 * 51 * 3);
+        assert_eq!(g.bonds().len(), 20_097);
+    }
+}
