@@ -22,8 +22,8 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use clap::{Parser, Subcommand};
 
 use crate::commands::{
-    bench_creation, bench_delaunay, bench_fracture, bench_step, bench_stress, fracture, inspect,
-    shape, simulate, study, tetrahedralize,
+    bench_creation, bench_delaunay, bench_fracture, bench_runtime, bench_step, bench_stress,
+    fracture, inspect, shape, simulate, study, tetrahedralize,
 };
 use crate::context::Context;
 use crate::error::CliError;
@@ -69,6 +69,9 @@ enum BenchCommand {
     Fracture(bench_fracture::BenchFractureArgs),
     /// Time one simulation step of the 2,000-fragment wall for each bond model.
     Step(bench_step::BenchStepArgs),
+    /// Runtime fracture: a cut at the impact on the bird and the cube, on one core by
+    /// default.
+    Runtime(bench_runtime::BenchRuntimeArgs),
     /// Time the stress solver on a 20,000-bond graph.
     Stress(bench_stress::BenchStressArgs),
     /// The thesis's creation time against random points, with CSV and plots.
@@ -94,6 +97,7 @@ fn run(command: &Command, ctx: &Context) -> Result<(), CliError> {
         }
         Command::Bench(BenchCommand::Fracture(a)) => bench_fracture::run(a, ctx),
         Command::Bench(BenchCommand::Step(a)) => bench_step::run(a, ctx).map(|_| ()),
+        Command::Bench(BenchCommand::Runtime(a)) => bench_runtime::run(a, ctx),
         Command::Bench(BenchCommand::Stress(a)) => bench_stress::run(a, ctx).map(|_| ()),
         Command::Bench(BenchCommand::Creation(a)) => bench_creation::run(a, ctx),
         Command::Study(a) => study::run(a, ctx),

@@ -116,3 +116,28 @@ fn bench_stress_reports_the_20000_bond_graph_and_skips_it_when_settled() {
         .bad_input(&["--preconditioner", "multigrid, block-jacobi"]);
     shatter(dir.path(), &["bench", "stress", "--tolerance", "2"]).bad_input(&["--tolerance"]);
 }
+
+#[test]
+fn bench_runtime_reports_every_case_and_refuses_bad_counts() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = shatter(dir.path(), &["bench", "runtime", "--runs", "1", "--json"])
+        .ok()
+        .json();
+    assert_eq!(json["threads"], 1);
+    assert_eq!(json["budget_ms"], 4.0);
+    let rows = json["rows"].as_array().unwrap();
+    let names: Vec<&str> = rows.iter().map(|r| r["case"].as_str().unwrap()).collect();
+    assert_eq!(names, ["bird-50", "bird-20", "bird-100", "cube-50"]);
+    for r in rows {
+        // A cut makes several fragments, never more than it asked for.
+        let fragments = r["fragments"].as_u64().unwrap();
+        assert!(
+            fragments > 3 && fragments <= r["pieces"].as_u64().unwrap(),
+            "{r}"
+        );
+        assert!(r["cut_ms"]["max"].as_f64().unwrap() >= r["cut_ms"]["min"].as_f64().unwrap());
+        assert!(r["world_ms"]["mean"].as_f64().unwrap() > 0.0);
+    }
+    shatter(dir.path(), &["bench", "runtime", "--runs", "0"]).bad_input(&["--runs"]);
+    shatter(dir.path(), &["bench", "runtime", "--threads", "0"]).bad_input(&["--threads"]);
+}

@@ -2,7 +2,7 @@
 //! case.
 
 /// Mean, min and max of some values.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Spread {
     /// Arithmetic mean.
     pub mean: f64,

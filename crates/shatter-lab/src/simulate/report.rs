@@ -37,6 +37,10 @@ pub struct SimulateReport {
     pub bonds_broken_by_stress: usize,
     /// Bonds broken when repeated weak hits wore their health to 0.
     pub bonds_broken_by_damage: usize,
+    /// Runtime cuts applied (an `on_impact` object's first cut, fragments cut again).
+    pub runtime_fractures: usize,
+    /// The deepest fracture level a runtime cut reached (0: none).
+    pub max_depth: u32,
     /// Mean wall-clock milliseconds per step.
     pub millis_per_step: f64,
     /// Bodies removed because they diverged.
@@ -65,6 +69,8 @@ impl SimulateReport {
             bonds_broken_by_impact: stats.bonds_broken_by_impact,
             bonds_broken_by_stress: stats.bonds_broken_by_stress,
             bonds_broken_by_damage: stats.bonds_broken_by_damage,
+            runtime_fractures: stats.runtime_fractures,
+            max_depth: stats.max_depth,
             millis_per_step: if steps > 0 {
                 total_ms / steps as f64
             } else {
