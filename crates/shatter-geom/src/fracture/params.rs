@@ -204,4 +204,14 @@ pub enum FractureError {
         /// Its index in the given list.
         index: usize,
     },
+    /// A [`Roughness`](super::Roughness) value out of range.
+    #[error("roughness {field} must be {expected} (got {value})")]
+    BadRoughness {
+        /// The field ("amplitude", "frequency", "octaves").
+        field: &'static str,
+        /// Its value.
+        value: f64,
+        /// What it must be.
+        expected: &'static str,
+    },
 }
