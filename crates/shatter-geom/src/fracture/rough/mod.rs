@@ -10,7 +10,7 @@
 //!
 //! The displacement is along the cap's normal, so each rough cap is a height field over
 //! its flat cap: no triangle of it can flip or fold over another. Its boundary does not
-//! move and gets no new vertex. The amplitude is limited per cap to 0.3 times the
+//! move and gets no new vertex. The amplitude is limited per cap to 0.4 times the
 //! taper's width (two grid spacings or the cap's depth, whichever is smaller), and a
 //! fragment whose new faces would touch or cross another of its faces (exact test)
 //! has the amplitude of its caps halved, up to five times, then those caps left flat.

@@ -33,7 +33,7 @@ const MIN_CLEARANCE: f64 = 0.4;
 /// At most this many grid points along a cap's longer side.
 const MAX_PER_AXIS: f64 = 24.0;
 /// The amplitude is at most this fraction of the taper's width.
-const MAX_SLOPE: f64 = 0.3;
+const MAX_SLOPE: f64 = 0.4;
 /// Ids of core points in a collar triangulation start here (below: fragment vertices).
 pub(crate) const CORE_ID: u32 = 1 << 31;
 
