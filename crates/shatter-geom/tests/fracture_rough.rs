@@ -368,3 +368,70 @@ fn rough_fragments_written_as_obj_for_the_independent_checker() {
         rough.fragments.len()
     );
 }
+
+/// Checks a rough fracture of `mesh` as the tests above do: valid, every fragment closed
+/// and outward by edges and not crossing itself, volumes adding up.
+fn assert_sound(mesh: &TriMesh, rough: &Fracture, what: &str) {
+    let volume = mesh.signed_volume();
+    rough.validate(Some(volume)).unwrap();
+    for (i, f) in rough.fragments.iter().enumerate() {
+        assert_closed_outward(&f.mesh, &format!("{what} fragment {i}"));
+        assert!(
+            f.mesh.self_intersections(1).is_empty(),
+            "{what} fragment {i} crosses itself"
+        );
+    }
+    let total = rough.total_volume();
+    assert!(
+        ((total - volume) / volume).abs() <= 1e-6,
+        "{what}: {total} vs {volume}"
+    );
+}
+
+#[test]
+fn a_large_amplitude_is_limited_per_cap_and_stays_sound() {
+    for (name, mesh, pieces) in meshes() {
+        let d = diag(&mesh);
+        let r = Roughness {
+            amplitude: 0.2 * d,
+            frequency: 3.0 / d,
+            octaves: 5,
+            seed: 11,
+        };
+        let (_, rough, report) = flat_and_rough(&mesh, pieces, &r);
+        assert!(report.caps > 0, "{name}: {report:?}");
+        assert!(report.reduced > 0, "{name}: {report:?}");
+        assert!(report.max_displacement < r.amplitude, "{name}: {report:?}");
+        assert_sound(&mesh, &rough, name);
+        eprintln!("{name} (amplitude {:.3}): {report:?}", r.amplitude);
+    }
+}
+
+#[test]
+fn slices_and_tetrahedra_can_be_roughened_too() {
+    let mesh = builtin::bird();
+    let methods = [
+        (
+            "slice",
+            Method::Slice {
+                pieces: 6,
+                planes: None,
+            },
+        ),
+        (
+            "tetra",
+            Method::Tetra {
+                random_vertices: 30,
+                skip: 0,
+                center: true,
+                placement: Default::default(),
+            },
+        ),
+    ];
+    for (name, method) in methods {
+        let mut rough = fracture(&mesh, &FractureParams { method, seed: 3 }).unwrap();
+        let report = roughen(&mut rough, &stone_for(&mesh, 1)).unwrap();
+        assert_sound(&mesh, &rough, name);
+        eprintln!("{name}: {report:?}");
+    }
+}

@@ -141,6 +141,9 @@ pub struct RoughReport {
     /// Rough caps whose amplitude is below the requested one (limited by the cap's size
     /// or halved to avoid crossing faces).
     pub reduced: usize,
+    /// Caps whose amplitude was halved (at least once) because a fragment's new faces
+    /// touched or crossed its other faces.
+    pub halved: usize,
     /// Vertices added per side (each rough cap's core counted once).
     pub vertices: usize,
     /// The largest displacement of any vertex from its cap's plane.
@@ -249,6 +252,7 @@ pub fn roughen(fracture: &mut Fracture, rough: &Roughness) -> Result<RoughReport
         report.max_displacement = report.max_displacement.max(deepest);
     }
     report.flat += caps.iter().filter(|c| c.amplitude == 0.0).count();
+    report.halved = halved.iter().filter(|&&h| h > 0).count();
     Ok(report)
 }
 
