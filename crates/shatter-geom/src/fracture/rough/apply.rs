@@ -9,8 +9,9 @@ use super::regions::Region;
 use super::tessellate::{CORE_ID, Core, barycentric2, region_triangles};
 use crate::TriMesh;
 use crate::fracture::Fragment;
-use crate::mesh::MeshReport;
+use crate::mesh::triangles_meet;
 use crate::model::Corners;
+use crate::util::FastSet;
 
 /// One cap being roughened.
 #[derive(Debug, Clone)]
@@ -82,13 +83,13 @@ impl UvSource {
 /// Fragment `f` (index `index`) rebuilt with the caps in `mine` (`(cap, side)` pairs):
 /// the other triangles in their order, then per cap its core and the side's collar.
 /// Side 1 gets the core wound the other way. Returns the fragment (convex pieces and
-/// mass properties still the old ones) and the index of its first new triangle.
+/// mass properties still the old ones) and the new patches, one per entry of `mine`.
 pub(crate) fn rebuild(
     f: &Fragment,
     regions: &[Region],
     caps: &[Cap],
     mine: &[(usize, usize)],
-) -> (Fragment, usize) {
+) -> (Fragment, Vec<Patch>) {
     let mut drop = vec![false; f.mesh.triangles.len()];
     for &(c, side) in mine {
         for &t in &regions[caps[c].sides[side]].tris {
@@ -104,7 +105,7 @@ pub(crate) fn rebuild(
         .map(|&t| f.material.get(t).copied().unwrap_or(0))
         .collect();
     let mut corners: Corners = f.corners.select(&keep);
-    let first_new = triangles.len();
+    let mut patches = Vec::with_capacity(mine.len());
     for &(c, side) in mine {
         let cap = &caps[c];
         let region = &regions[cap.sides[side]];
@@ -132,6 +133,7 @@ pub(crate) fn rebuild(
                 })
             }
         };
+        let start = triangles.len();
         let core_tris = cap.core.tris.iter().map(|t| t.map(|k| CORE_ID + k));
         for t in core_tris.chain(cap.collars[side].iter().copied()) {
             // Counter-clockwise in the frame: side 0's winding; side 1 is reversed.
@@ -152,6 +154,12 @@ pub(crate) fn rebuild(
                 out.push([col; 3]);
             }
         }
+        patches.push(Patch {
+            start,
+            core_end: start + cap.core.tris.len(),
+            end: triangles.len(),
+            boundary: region.boundary.clone(),
+        });
     }
     let fragment = Fragment {
         mesh: TriMesh::new(positions, triangles),
@@ -163,26 +171,78 @@ pub(crate) fn rebuild(
         centroid: f.centroid,
         inertia: f.inertia,
     };
-    (fragment, first_new)
+    (fragment, patches)
 }
 
-/// Whether the rebuilt fragment is sound: its topology no worse than `before`'s (the
-/// old fragment's check: closed, manifold and consistently wound fragments stay so) and
-/// no new triangle touching or crossing another triangle it shares no vertex with
-/// (exact predicates).
-pub(crate) fn sound(f: &Fragment, first_new: usize, before: &MeshReport) -> bool {
-    let r = f.mesh.check();
-    let worse = r.boundary_edges > before.boundary_edges
-        || r.non_manifold_edges > before.non_manifold_edges
-        || r.non_manifold_vertices > before.non_manifold_vertices
-        || r.inconsistent_edges > before.inconsistent_edges
-        || r.invalid_triangles > before.invalid_triangles
-        || r.degenerate_triangles > before.degenerate_triangles;
-    if worse {
-        return false;
+/// The new triangles of one cap side in a rebuilt fragment: `start..core_end` the
+/// (displaced) core, `core_end..end` the flat collar; `boundary` the old cap's boundary
+/// edges, which the patch must have as its own.
+#[derive(Debug, Clone)]
+pub(crate) struct Patch {
+    pub start: usize,
+    pub core_end: usize,
+    pub end: usize,
+    pub boundary: Vec<(u32, u32)>,
+}
+
+/// Whether the rebuilt fragment is sound. Each patch is a consistently wound surface
+/// (every directed edge once) whose boundary is the old cap's, edge for edge, so the
+/// fragment's topology is the old one's. And no displaced (core) triangle touches or
+/// crosses a triangle outside its own patch (exact predicates; it shares no vertex with
+/// them); within a patch the faces are a height field over the flat cap, so they cannot
+/// meet.
+pub(crate) fn sound(f: &Fragment, patches: &[Patch]) -> bool {
+    let tris = &f.mesh.triangles;
+    for p in patches {
+        let mut directed: FastSet<(u32, u32)> = FastSet::default();
+        for t in &tris[p.start..p.end] {
+            for e in 0..3 {
+                if !directed.insert((t[e], t[(e + 1) % 3])) {
+                    return false;
+                }
+            }
+        }
+        let mut open: Vec<(u32, u32)> = directed
+            .iter()
+            .copied()
+            .filter(|&(a, b)| !directed.contains(&(b, a)))
+            .collect();
+        let mut want = p.boundary.clone();
+        open.sort_unstable();
+        want.sort_unstable();
+        if open != want {
+            return false;
+        }
     }
-    f.mesh
-        .self_intersections(usize::MAX)
-        .iter()
-        .all(|&(s, t)| (s as usize) < first_new && (t as usize) < first_new)
+    let corners = |t: usize| f.mesh.triangle(t);
+    let bounds = |c: [DVec3; 3]| (c[0].min(c[1]).min(c[2]), c[0].max(c[1]).max(c[2]));
+    let meet = |(lo, hi): (DVec3, DVec3), (lo2, hi2): (DVec3, DVec3)| {
+        !(lo2.cmpgt(hi).any() || lo.cmpgt(hi2).any())
+    };
+    for p in patches {
+        let core: Vec<([DVec3; 3], (DVec3, DVec3))> = (p.start..p.core_end)
+            .map(|t| (corners(t), bounds(corners(t))))
+            .collect();
+        let Some(all) = core
+            .iter()
+            .map(|c| c.1)
+            .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1)))
+        else {
+            continue;
+        };
+        for u in (0..tris.len()).filter(|&u| u < p.start || u >= p.end) {
+            let cu = corners(u);
+            let bu = bounds(cu);
+            if !meet(all, bu) {
+                continue;
+            }
+            if core
+                .iter()
+                .any(|(ct, bt)| meet(*bt, bu) && triangles_meet(*ct, cu))
+            {
+                return false;
+            }
+        }
+    }
+    true
 }

@@ -30,7 +30,7 @@ use serde::{Deserialize, Serialize};
 
 use super::params::FractureError;
 use super::types::{Fracture, Fragment};
-use crate::mesh::{MeshReport, mass_properties};
+use crate::mesh::mass_properties;
 use apply::{Cap, UvSource, rebuild, sound};
 use pieces::{Cut, clip_piece};
 use regions::{Region, regions_of, shared_caps};
@@ -206,7 +206,6 @@ pub fn roughen(fracture: &mut Fracture, rough: &Roughness) -> Result<RoughReport
     report.flat = built.iter().filter(|c| c.is_none()).count();
     let mut caps: Vec<Cap> = built.into_iter().flatten().collect();
     let mut halved = vec![0usize; caps.len()];
-    let before: Vec<MeshReport> = fragments.par_iter().map(|f| f.mesh.check()).collect();
     // Rebuild, check, and calm the caps of fragments that fail, until none fails.
     let rebuilt = loop {
         let mine = caps_of(fragments.len(), &regions, &caps);
@@ -214,7 +213,7 @@ pub fn roughen(fracture: &mut Fracture, rough: &Roughness) -> Result<RoughReport
             .par_iter()
             .enumerate()
             .with_max_len(1)
-            .map(|(i, f)| finish(f, &regions, &caps, &mine[i], &before[i]))
+            .map(|(i, f)| finish(f, &regions, &caps, &mine[i]))
             .collect();
         let failing: Vec<usize> = (0..fragments.len())
             .filter(|&i| !mine[i].is_empty() && rebuilt[i].is_none())
@@ -300,13 +299,12 @@ fn finish(
     regions: &[Region],
     caps: &[Cap],
     mine: &[(usize, usize)],
-    before: &MeshReport,
 ) -> Option<Fragment> {
     if mine.is_empty() {
         return Some(f.clone());
     }
-    let (mut new, first_new) = rebuild(f, regions, caps, mine);
-    if !sound(&new, first_new, before) {
+    let (mut new, patches) = rebuild(f, regions, caps, mine);
+    if !sound(&new, &patches) {
         return None;
     }
     let (lo, hi) = new.mesh.bounds()?;

@@ -19,21 +19,18 @@ pub(crate) struct Cut {
 /// The 2D convex hull (counter-clockwise, no collinear points) of `pts` (monotone
 /// chain).
 fn hull2(mut pts: Vec<DVec2>) -> Vec<DVec2> {
-    pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    pts.sort_unstable_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
     pts.dedup();
     if pts.len() < 3 {
         return pts;
     }
     let cross = |o: DVec2, a: DVec2, b: DVec2| (a - o).perp_dot(b - o);
     let mut h: Vec<DVec2> = Vec::with_capacity(2 * pts.len());
+    let n = pts.len();
     for pass in 0..2 {
         let start = h.len();
-        let iter: Box<dyn Iterator<Item = &DVec2>> = if pass == 0 {
-            Box::new(pts.iter())
-        } else {
-            Box::new(pts.iter().rev())
-        };
-        for &p in iter {
+        for k in 0..n {
+            let p = if pass == 0 { pts[k] } else { pts[n - 1 - k] };
             while h.len() >= start + 2 && cross(h[h.len() - 2], h[h.len() - 1], p) <= 0.0 {
                 h.pop();
             }
@@ -88,11 +85,12 @@ pub(crate) fn clip_piece(pts: &[DVec3], cut: &Cut, tol: f64) -> Option<Vec<DVec3
     if lo.cmpgt(cut.hi).any() || cut.lo.cmpgt(hi).any() {
         return Some(pts.to_vec());
     }
-    let kept: Vec<DVec3> = pts.iter().copied().filter(|&p| side(p) <= 0.0).collect();
-    let mut section = Vec::new();
-    for &p in pts.iter().filter(|&&p| side(p) <= 0.0) {
-        for &q in pts.iter().filter(|&&q| side(q) > 0.0) {
-            let (sp, sq) = (side(p), side(q));
+    let sides: Vec<f64> = pts.iter().map(|&p| side(p)).collect();
+    let (kept, removed): (Vec<usize>, Vec<usize>) = (0..pts.len()).partition(|&k| sides[k] <= 0.0);
+    let mut section = Vec::with_capacity(kept.len() * removed.len());
+    for &i in &kept {
+        for &j in &removed {
+            let (p, q, sp, sq) = (pts[i], pts[j], sides[i], sides[j]);
             let x = p + (q - p) * (sp / (sp - sq));
             section.push(DVec2::new(
                 (x - cut.point).dot(cut.u),
@@ -100,7 +98,7 @@ pub(crate) fn clip_piece(pts: &[DVec3], cut: &Cut, tol: f64) -> Option<Vec<DVec3
             ));
         }
     }
-    let mut out = kept;
+    let mut out: Vec<DVec3> = kept.iter().map(|&k| pts[k]).collect();
     out.extend(
         hull2(section)
             .into_iter()

@@ -13,17 +13,13 @@ use std::collections::BTreeMap;
 use glam::DVec3;
 
 use super::super::types::{Bond, Fragment};
-use crate::mesh::position_key;
-use crate::util::{FastMap, UnionFind};
+use crate::util::{FastMap, FastSet, UnionFind};
 
 /// Two triangles are coplanar when their unit normals agree to this (1 − cos).
 const NORMAL_TOL: f64 = 1e-8;
 /// ... and the other's corners are within this fraction of the fragment's size of the
 /// plane.
 const PLANE_TOL: f64 = 1e-9;
-
-/// A position's key (its bits).
-pub(crate) type Key = [u64; 3];
 
 /// One flat region of interior triangles of a fragment.
 #[derive(Debug, Clone)]
@@ -42,11 +38,12 @@ pub(crate) struct Region {
     pub boundary: Vec<(u32, u32)>,
 }
 
-/// The directed edges of a fragment by the keys of their ends: edge → triangle.
-pub(crate) fn edge_map(mesh: &crate::TriMesh) -> FastMap<(Key, Key), u32> {
+/// The directed edges of a mesh by the welded indices (`canon`, equal positions one
+/// index) of their ends: edge → triangle.
+fn edge_map(mesh: &crate::TriMesh, canon: &[u32]) -> FastMap<(u32, u32), u32> {
     let mut map = FastMap::default();
     for (t, tri) in mesh.triangles.iter().enumerate() {
-        let k = tri.map(|i| position_key(mesh.positions[i as usize]));
+        let k = tri.map(|i| canon[i as usize]);
         for e in 0..3 {
             map.insert((k[e], k[(e + 1) % 3]), t as u32);
         }
@@ -62,8 +59,9 @@ pub(crate) fn regions_of(index: usize, f: &Fragment) -> Vec<Region> {
     let (lo, hi) = crate::util::bounds(pos);
     let tol = PLANE_TOL * (hi - lo).length().max(f64::MIN_POSITIVE);
     let unit = |t: usize| mesh.triangle_normal(t);
-    let edges = edge_map(mesh);
-    let key = |i: u32| position_key(pos[i as usize]);
+    let (canon, _) = mesh.weld_map();
+    let edges = edge_map(mesh, &canon);
+    let key = |i: u32| canon[i as usize];
     let mut uf = UnionFind::new(n);
     for t in 0..n {
         if !f.interior.get(t).copied().unwrap_or(false) {
@@ -97,7 +95,7 @@ pub(crate) fn regions_of(index: usize, f: &Fragment) -> Vec<Region> {
     }
     let mut out: Vec<Region> = groups
         .into_values()
-        .filter_map(|tris| region(index, mesh, tris))
+        .filter_map(|tris| region(index, mesh, &canon, tris))
         .collect();
     out.sort_by_key(|r| r.tris[0]);
     out
@@ -105,21 +103,20 @@ pub(crate) fn regions_of(index: usize, f: &Fragment) -> Vec<Region> {
 
 /// A region from its triangles: normal, centroid and boundary (`None` when its area is
 /// zero).
-fn region(fragment: usize, mesh: &crate::TriMesh, tris: Vec<u32>) -> Option<Region> {
-    let pos = &mesh.positions;
+fn region(fragment: usize, mesh: &crate::TriMesh, canon: &[u32], tris: Vec<u32>) -> Option<Region> {
     let mut area_normal = DVec3::ZERO;
     let mut moment = DVec3::ZERO;
     let mut area = 0.0;
-    let mut inside: FastMap<(Key, Key), ()> = FastMap::default();
+    let mut inside: FastSet<(u32, u32)> = FastSet::default();
     for &t in &tris {
         let [a, b, c] = mesh.triangle(t as usize);
         let an = (b - a).cross(c - a);
         area_normal += an;
         area += an.length();
         moment += an.length() * (a + b + c) / 3.0;
-        let k = mesh.triangles[t as usize].map(|i| position_key(pos[i as usize]));
+        let k = mesh.triangles[t as usize].map(|i| canon[i as usize]);
         for e in 0..3 {
-            inside.insert((k[e], k[(e + 1) % 3]), ());
+            inside.insert((k[e], k[(e + 1) % 3]));
         }
     }
     let normal = area_normal.try_normalize()?;
@@ -131,8 +128,7 @@ fn region(fragment: usize, mesh: &crate::TriMesh, tris: Vec<u32>) -> Option<Regi
         let tri = mesh.triangles[t as usize];
         for e in 0..3 {
             let (a, b) = (tri[e], tri[(e + 1) % 3]);
-            let reverse = (position_key(pos[b as usize]), position_key(pos[a as usize]));
-            if !inside.contains_key(&reverse) {
+            if !inside.contains(&(canon[b as usize], canon[a as usize])) {
                 boundary.push((a, b));
             }
         }
