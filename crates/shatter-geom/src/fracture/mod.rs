@@ -13,7 +13,8 @@
 //! and sampling), `bonds` (bonds through matching caps, merging small pieces); beside them
 //! `params` and `types` (the public types), `validate` (input checks), `attributes`
 //! (UVs, normals, colours and materials of the fragments, from their positions and the
-//! kernel's tags) and `entry` (the public functions).
+//! kernel's tags), `entry` (the public functions) and `rough` (the [`roughen`] post-pass
+//! that displaces the cut faces by fractal noise, [`Roughness`]).
 
 mod attributes;
 mod bonds;

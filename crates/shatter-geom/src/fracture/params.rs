@@ -214,4 +214,14 @@ pub enum FractureError {
         /// What it must be.
         expected: &'static str,
     },
+    /// A fragment of a fracture given to [`roughen`](super::roughen) whose parts do not
+    /// fit together (an index past its vertices, a non-finite vertex, per-triangle lists
+    /// of the wrong length).
+    #[error("fragment {fragment}: {reason}")]
+    BadFragment {
+        /// The fragment.
+        fragment: usize,
+        /// What is wrong.
+        reason: &'static str,
+    },
 }

@@ -183,6 +183,12 @@ pub fn roughen(fracture: &mut Fracture, rough: &Roughness) -> Result<RoughReport
     if rough.is_off() || fracture.fragments.is_empty() {
         return Ok(report);
     }
+    for (i, f) in fracture.fragments.iter().enumerate() {
+        check_fragment(f).map_err(|reason| FractureError::BadFragment {
+            fragment: i,
+            reason,
+        })?;
+    }
     let fragments = &fracture.fragments;
     let regions: Vec<Region> = fragments
         .par_iter()
@@ -253,6 +259,40 @@ pub fn roughen(fracture: &mut Fracture, rough: &Roughness) -> Result<RoughReport
     report.flat += caps.iter().filter(|c| c.amplitude == 0.0).count();
     report.halved = halved.iter().filter(|&&h| h > 0).count();
     Ok(report)
+}
+
+/// Whether `f`'s parts fit together (what [`roughen`] indexes): triangle indices in
+/// range, finite positions, one interior flag per triangle, one material per triangle
+/// (or none) and one entry per triangle in each corner attribute present.
+fn check_fragment(f: &Fragment) -> Result<(), &'static str> {
+    let n = f.mesh.triangles.len();
+    let vertices = f.mesh.positions.len();
+    if f.mesh
+        .triangles
+        .iter()
+        .flatten()
+        .any(|&i| i as usize >= vertices)
+    {
+        return Err("a triangle index past its vertices");
+    }
+    if !f.mesh.positions.iter().all(|p| p.is_finite()) {
+        return Err("a vertex is not finite");
+    }
+    if f.interior.len() != n {
+        return Err("not one interior flag per triangle");
+    }
+    if !(f.material.is_empty() || f.material.len() == n) {
+        return Err("not one material per triangle");
+    }
+    let c = &f.corners;
+    let fits = |len: Option<usize>| len.is_none_or(|l| l == n);
+    if !(fits(c.uv.as_ref().map(Vec::len))
+        && fits(c.normal.as_ref().map(Vec::len))
+        && fits(c.color.as_ref().map(Vec::len)))
+    {
+        return Err("corner attributes not one entry per triangle");
+    }
+    Ok(())
 }
 
 /// The cap whose sides are `regions[sides[0]]` and `regions[sides[1]]`, or `None` when

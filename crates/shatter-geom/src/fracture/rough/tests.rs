@@ -119,3 +119,53 @@ fn a_slice_in_two_gets_one_rough_cap_shared_by_both_halves() {
     assert_eq!(off(&fr.fragments[0]), off(&fr.fragments[1]));
     fr.validate(Some(1.0)).unwrap();
 }
+
+#[test]
+fn a_malformed_fragment_is_refused_not_a_panic() {
+    let good = fracture(&shapes::cube(), &voronoi(4, 1)).unwrap();
+    type Breakage = (&'static str, fn(&mut Fragment));
+    let breakages: [Breakage; 4] = [
+        ("index", |f| f.mesh.triangles[0][0] = 1 << 30),
+        ("flags", |f| {
+            f.interior.pop();
+        }),
+        ("nan", |f| f.mesh.positions[0].x = f64::NAN),
+        ("uv", |f| f.corners.uv = Some(vec![[[0.0; 2]; 3]])),
+    ];
+    for (what, broken) in breakages {
+        let mut fr = good.clone();
+        broken(&mut fr.fragments[1]);
+        let err = roughen(&mut fr, &Roughness::STONE).unwrap_err();
+        assert!(
+            matches!(err, FractureError::BadFragment { fragment: 1, .. }),
+            "{what}: {err}"
+        );
+    }
+}
+
+#[test]
+fn the_result_does_not_depend_on_the_threads() {
+    let fr = fracture(&shapes::bird(), &voronoi(20, 4)).unwrap();
+    let r = Roughness {
+        amplitude: 0.05,
+        frequency: 2.0,
+        ..Roughness::STONE
+    };
+    let run = || {
+        let mut out = fr.clone();
+        let report = roughen(&mut out, &r).unwrap();
+        (out, report)
+    };
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap()
+        .install(run);
+    let many = rayon::ThreadPoolBuilder::new()
+        .num_threads(4)
+        .build()
+        .unwrap()
+        .install(run);
+    assert!(one.1.caps > 0);
+    assert_eq!(one, many);
+}
