@@ -342,31 +342,27 @@ fn interior_uvs_stay_the_planar_projection_of_the_rough_faces() {
 
 #[test]
 fn rough_fragments_written_as_obj_for_the_independent_checker() {
-    // Writes the bird and its rough fragments where `check_fragments.py` can read them
-    // (SHATTER_ROUGH_OBJ_DIR, or the temporary directory).
-    let mesh = builtin::bird();
-    let (_, rough, _) = flat_and_rough(&mesh, 50, &stone_for(&mesh, 1));
+    // Writes each mesh and its rough fragments where `check_fragments.py` can read them
+    // (SHATTER_ROUGH_OBJ_DIR, or the temporary directory): rough_NAME_input.obj and
+    // rough_NAME_fragments.obj.
     let dir = std::env::var_os("SHATTER_ROUGH_OBJ_DIR")
         .map(std::path::PathBuf::from)
         .unwrap_or_else(std::env::temp_dir);
-    let names = shatter_geom::io::fragment_names(rough.fragments.len());
-    let objects = shatter_geom::io::ExportObject::of_fragments(&rough.fragments, &names);
-    let mut text = Vec::new();
-    shatter_geom::io::write_obj(&mut text, &objects, None).unwrap();
-    std::fs::write(dir.join("rough_bird_fragments.obj"), &text).unwrap();
-    let mut input = Vec::new();
-    shatter_geom::io::write_obj(
-        &mut input,
-        &[shatter_geom::io::ExportObject::new("bird", &mesh)],
-        None,
-    )
-    .unwrap();
-    std::fs::write(dir.join("rough_bird_input.obj"), &input).unwrap();
-    let text = String::from_utf8(text).unwrap();
-    assert_eq!(
-        text.lines().filter(|l| l.starts_with("o ")).count(),
-        rough.fragments.len()
-    );
+    for (name, mesh, pieces) in meshes() {
+        let (_, rough, _) = flat_and_rough(&mesh, pieces, &stone_for(&mesh, 1));
+        let names = shatter_geom::io::fragment_names(rough.fragments.len());
+        let objects = shatter_geom::io::ExportObject::of_fragments(&rough.fragments, &names);
+        let mut text = Vec::new();
+        shatter_geom::io::write_obj(&mut text, &objects, None).unwrap();
+        std::fs::write(dir.join(format!("rough_{name}_fragments.obj")), &text).unwrap();
+        let mut input = Vec::new();
+        let whole = [shatter_geom::io::ExportObject::new(name, &mesh)];
+        shatter_geom::io::write_obj(&mut input, &whole, None).unwrap();
+        std::fs::write(dir.join(format!("rough_{name}_input.obj")), &input).unwrap();
+        let text = String::from_utf8(text).unwrap();
+        let objects = text.lines().filter(|l| l.starts_with("o ")).count();
+        assert_eq!(objects, rough.fragments.len());
+    }
 }
 
 /// Checks a rough fracture of `mesh` as the tests above do: valid, every fragment closed
