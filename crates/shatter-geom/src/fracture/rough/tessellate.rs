@@ -160,8 +160,17 @@ pub(crate) fn build_core(f: &Fragment, r: &Region, rough: &Roughness) -> Option<
     if !(extent > 0.0 && extent.is_finite()) {
         return None;
     }
+    // A quarter of the noise's period, at most an eighth of the cap and half its
+    // inradius (about area over half the perimeter), at least 1/24 of the cap.
+    let area: f64 = tris2
+        .iter()
+        .map(|t| 0.5 * (t[1] - t[0]).perp_dot(t[2] - t[0]).abs())
+        .sum();
+    let perimeter: f64 = boundary2.iter().map(|(a, b)| (*b - *a).length()).sum();
+    let inradius = 2.0 * area / perimeter.max(f64::MIN_POSITIVE);
     let spacing = (0.25 / rough.frequency)
         .min(extent / 8.0)
+        .min(inradius / 2.0)
         .max(extent / MAX_PER_AXIS);
     let dist = |q: DVec2| {
         boundary2
