@@ -197,6 +197,50 @@ fn both_sides_of_a_cap_share_their_displaced_vertices() {
     }
 }
 
+/// The rough fragments fit together and do not overlap: just inside a rough interior
+/// face, only its own fragment is; just outside, exactly one other fragment is (the
+/// neighbour across the crack).
+#[test]
+fn rough_fragments_fit_together_without_overlap() {
+    for (name, mesh, pieces) in meshes() {
+        let (_, rough, _) = flat_and_rough(&mesh, pieces, &stone_for(&mesh, 9));
+        let eps = 1e-7 * diag(&mesh);
+        let mut probes = 0;
+        for (i, f) in rough.fragments.iter().enumerate() {
+            for t in (0..f.mesh.triangles.len())
+                .filter(|&t| f.interior[t])
+                .step_by(7)
+            {
+                let [a, b, c] = f.mesh.triangle(t);
+                let n = (b - a).cross(c - a);
+                // Well-shaped faces only, so the probes are far from the face's edges.
+                if n.length() < 1e-3 * (b - a).length_squared().max((c - a).length_squared()) {
+                    continue;
+                }
+                let n = n.normalize();
+                let p = (a + b + c) / 3.0;
+                let holders = |q: DVec3| -> Vec<usize> {
+                    (0..rough.fragments.len())
+                        .filter(|&j| winding(&rough.fragments[j].mesh, q) > 0.5)
+                        .collect()
+                };
+                assert_eq!(
+                    holders(p - n * eps),
+                    vec![i],
+                    "{name}: inside face {t} of {i}"
+                );
+                let outside = holders(p + n * eps);
+                assert!(
+                    outside.len() == 1 && outside[0] != i,
+                    "{name}: outside face {t} of {i} is in {outside:?}"
+                );
+                probes += 1;
+            }
+        }
+        assert!(probes > 50, "{name}: {probes} probes");
+    }
+}
+
 #[test]
 fn the_same_seed_gives_the_same_faces_and_another_seed_others() {
     for (name, mesh, pieces) in meshes() {

@@ -169,3 +169,20 @@ fn the_result_does_not_depend_on_the_threads() {
     assert!(one.1.caps > 0);
     assert_eq!(one, many);
 }
+
+#[test]
+fn roughness_reads_from_json_with_defaults_and_refuses_unknown_fields() {
+    let r: Roughness = serde_json::from_str(r#"{"amplitude": 0.01, "seed": 3}"#).unwrap();
+    assert_eq!(
+        r,
+        Roughness {
+            amplitude: 0.01,
+            seed: 3,
+            ..Roughness::OFF
+        }
+    );
+    assert!(serde_json::from_str::<Roughness>(r#"{"amplitud": 0.01}"#).is_err());
+    let back: Roughness =
+        serde_json::from_str(&serde_json::to_string(&Roughness::STONE).unwrap()).unwrap();
+    assert_eq!(back, Roughness::STONE);
+}
