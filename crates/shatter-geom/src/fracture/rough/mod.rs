@@ -212,20 +212,27 @@ pub fn roughen(fracture: &mut Fracture, rough: &Roughness) -> Result<RoughReport
     report.flat = built.iter().filter(|c| c.is_none()).count();
     let mut caps: Vec<Cap> = built.into_iter().flatten().collect();
     let mut halved = vec![0usize; caps.len()];
-    // Rebuild, check, and calm the caps of fragments that fail, until none fails.
-    let rebuilt = loop {
+    // Rebuild, check, and calm the caps of fragments that fail, until none fails; each
+    // round rebuilds only the fragments whose caps changed.
+    let mut rebuilt: Vec<Option<Fragment>> = vec![None; fragments.len()];
+    let mut dirty = vec![true; fragments.len()];
+    loop {
         let mine = caps_of(fragments.len(), &regions, &caps);
-        let rebuilt: Vec<Option<Fragment>> = fragments
-            .par_iter()
-            .enumerate()
+        let todo: Vec<usize> = (0..fragments.len()).filter(|&i| dirty[i]).collect();
+        let redone: Vec<(usize, Option<Fragment>)> = todo
+            .into_par_iter()
             .with_max_len(1)
-            .map(|(i, f)| finish(f, &regions, &caps, &mine[i]))
+            .map(|i| (i, finish(&fragments[i], &regions, &caps, &mine[i])))
             .collect();
+        for (i, f) in redone {
+            rebuilt[i] = f;
+        }
+        dirty.fill(false);
         let failing: Vec<usize> = (0..fragments.len())
-            .filter(|&i| !mine[i].is_empty() && rebuilt[i].is_none())
+            .filter(|&i| rebuilt[i].is_none())
             .collect();
         if failing.is_empty() {
-            break rebuilt;
+            break;
         }
         for &i in &failing {
             for &(c, _) in &mine[i] {
@@ -235,9 +242,12 @@ pub fn roughen(fracture: &mut Fracture, rough: &Roughness) -> Result<RoughReport
                 } else {
                     caps[c].amplitude = 0.0;
                 }
+                for side in caps[c].sides {
+                    dirty[regions[side].fragment] = true;
+                }
             }
         }
-    };
+    }
     for (f, new) in fracture.fragments.iter_mut().zip(rebuilt) {
         if let Some(new) = new {
             *f = new;
