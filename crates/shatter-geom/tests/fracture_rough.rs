@@ -481,3 +481,22 @@ fn slices_and_tetrahedra_can_be_roughened_too() {
         eprintln!("{name}: {report:?}");
     }
 }
+
+#[test]
+fn a_rough_fracture_survives_the_asset_round_trip() {
+    // The pre-fractured GLB (SHATTER_fracture) stores positions as f32: the rough
+    // fragments read back closed and outward, with the same pieces and volumes.
+    let mesh = builtin::bird();
+    let (_, rough, _) = flat_and_rough(&mesh, 30, &stone_for(&mesh, 1));
+    let mut glb = Vec::new();
+    let meta = shatter_geom::io::FractureAssetMeta::default();
+    shatter_geom::io::write_fracture_glb(&mut glb, &rough, &meta).unwrap();
+    let (back, _) = shatter_geom::io::parse_fracture(&glb, "rough.glb").unwrap();
+    assert_eq!(back.fragments.len(), rough.fragments.len());
+    for (i, (f, g)) in rough.fragments.iter().zip(&back.fragments).enumerate() {
+        assert_closed_outward(&g.mesh, &format!("read-back fragment {i}"));
+        assert_eq!(g.mesh.triangles.len(), f.mesh.triangles.len());
+        assert_eq!(g.convex_pieces.len(), f.convex_pieces.len());
+        assert!((g.volume - f.volume).abs() <= 1e-9 * f.volume);
+    }
+}
