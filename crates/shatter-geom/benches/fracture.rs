@@ -1,9 +1,11 @@
 //! Criterion benchmarks of fracture: the bird into 100 Voronoi cells (compare with
 //! Blender's Cell Fracture) and the thesis's creation case (cube, 500 random points,
-//! tetra).
+//! tetra); rough cut faces on the bird's 100 cells.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use shatter_geom::fracture::{FractureParams, Method, Pattern, Placement, fracture};
+use shatter_geom::fracture::{
+    FractureParams, Method, Pattern, Placement, Roughness, fracture, roughen,
+};
 use shatter_geom::shapes;
 
 fn bench(c: &mut Criterion) {
@@ -19,6 +21,19 @@ fn bench(c: &mut Criterion) {
     };
     c.bench_function("fracture/voronoi_bird_100", |b| {
         b.iter(|| fracture(&bird, &voronoi).expect("bird fractures"))
+    });
+
+    let cells = fracture(&bird, &voronoi).expect("bird fractures");
+    let stone = Roughness {
+        amplitude: 0.02,
+        frequency: 2.0,
+        ..Roughness::STONE
+    };
+    c.bench_function("fracture/roughen_bird_100", |b| {
+        b.iter(|| {
+            let mut rough = cells.clone();
+            roughen(&mut rough, &stone).expect("valid roughness")
+        })
     });
 
     let cube = shapes::cube();

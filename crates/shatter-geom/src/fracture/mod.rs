@@ -13,7 +13,8 @@
 //! and sampling), `bonds` (bonds through matching caps, merging small pieces); beside them
 //! `params` and `types` (the public types), `validate` (input checks), `attributes`
 //! (UVs, normals, colours and materials of the fragments, from their positions and the
-//! kernel's tags) and `entry` (the public functions).
+//! kernel's tags), `entry` (the public functions) and `rough` (the [`roughen`] post-pass
+//! that displaces the cut faces by fractal noise, [`Roughness`]).
 
 mod attributes;
 mod bonds;
@@ -23,6 +24,7 @@ mod kernel;
 mod methods;
 pub(crate) mod normalize;
 mod params;
+mod rough;
 mod seeds;
 mod types;
 mod validate;
@@ -33,4 +35,5 @@ pub use entry::{fracture, fracture_model};
 pub use methods::tetra::{SLIVER_QUALITY, SLIVER_VOLUME_FRACTION};
 pub use normalize::ANISOTROPY;
 pub use params::{FractureError, FractureParams, Method, MethodKind, Pattern, Placement};
+pub use rough::{RoughReport, Roughness, roughen};
 pub use types::{Bond, Fracture, Fragment};

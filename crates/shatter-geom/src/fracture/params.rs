@@ -204,4 +204,24 @@ pub enum FractureError {
         /// Its index in the given list.
         index: usize,
     },
+    /// A [`Roughness`](super::Roughness) value out of range.
+    #[error("roughness {field} must be {expected} (got {value})")]
+    BadRoughness {
+        /// The field ("amplitude", "frequency", "octaves").
+        field: &'static str,
+        /// Its value.
+        value: f64,
+        /// What it must be.
+        expected: &'static str,
+    },
+    /// A fragment of a fracture given to [`roughen`](super::roughen) whose parts do not
+    /// fit together (an index past its vertices, a non-finite vertex, per-triangle lists
+    /// of the wrong length).
+    #[error("fragment {fragment}: {reason}")]
+    BadFragment {
+        /// The fragment.
+        fragment: usize,
+        /// What is wrong.
+        reason: &'static str,
+    },
 }

@@ -10,6 +10,7 @@ mod trimesh;
 mod validate;
 mod weld;
 pub(crate) use check::is_degenerate;
+pub(crate) use intersect::triangles_meet;
 pub(crate) use mass::mass_properties;
 pub(crate) use weld::position_key;
 pub(crate) use winding::winding_number;

@@ -6,7 +6,7 @@ use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 
 use super::Plane;
 use crate::mesh::position_key;
-use crate::util::FastMap;
+use crate::util::{FastMap, FastSet};
 
 /// An orthonormal frame `(u, v)` of the plane with `u × v` along `n`.
 pub(crate) fn plane_frame(n: DVec3) -> (DVec3, DVec3) {
@@ -44,27 +44,48 @@ pub(crate) fn triangulate_cap(
         return ears;
     }
 
+    let mut points: Vec<(u32, DVec2)> = Vec::with_capacity(boundary.len());
+    let mut seen: FastSet<u32> = FastSet::default();
+    for &(a, b) in boundary {
+        for id in [a, b] {
+            if seen.insert(id) {
+                points.push((id, to2(pos[id as usize])));
+            }
+        }
+    }
+    constrained_triangulation(&points, boundary)
+}
+
+/// The constrained Delaunay triangulation (spade, exact predicates) of the region
+/// bounded by the directed edges `boundary`, over `points` (an id and its 2D position;
+/// ids not on the boundary are interior points, Steiner points of the caller). Returns
+/// the inside triangles as ids, counter-clockwise in 2D. The inside is found by the
+/// parity of the constraint edges crossed from the outside, so loops that touch at a
+/// vertex and nested loops (holes, islands in holes) come out right. Points at an
+/// existing point's position are merged into it (the first id is kept), and crossing
+/// constraints (only from rounding in a degenerate input) are skipped, not a panic.
+pub(crate) fn constrained_triangulation(
+    points: &[(u32, DVec2)],
+    boundary: &[(u32, u32)],
+) -> Vec<[u32; 3]> {
     let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> =
         ConstrainedDelaunayTriangulation::new();
     let mut handle_of: FastMap<u32, spade::handles::FixedVertexHandle> = FastMap::default();
     let mut id_of_handle: Vec<u32> = Vec::new();
-    for &(a, b) in boundary {
-        for id in [a, b] {
-            if handle_of.contains_key(&id) {
-                continue;
-            }
-            let p = to2(pos[id as usize]);
-            let Ok(h) = cdt.insert(Point2::new(p.x, p.y)) else {
-                continue;
-            };
-            if h.index() >= id_of_handle.len() {
-                id_of_handle.resize(h.index() + 1, u32::MAX);
-            }
-            if id_of_handle[h.index()] == u32::MAX {
-                id_of_handle[h.index()] = id;
-            }
-            handle_of.insert(id, h);
+    for &(id, p) in points {
+        if handle_of.contains_key(&id) {
+            continue;
         }
+        let Ok(h) = cdt.insert(Point2::new(p.x, p.y)) else {
+            continue;
+        };
+        if h.index() >= id_of_handle.len() {
+            id_of_handle.resize(h.index() + 1, u32::MAX);
+        }
+        if id_of_handle[h.index()] == u32::MAX {
+            id_of_handle[h.index()] = id;
+        }
+        handle_of.insert(id, h);
     }
     for &(a, b) in boundary {
         if let (Some(&ha), Some(&hb)) = (handle_of.get(&a), handle_of.get(&b))
