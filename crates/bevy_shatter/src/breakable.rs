@@ -6,7 +6,7 @@ use std::sync::Arc;
 use bevy::prelude::*;
 use bevy::tasks::{AsyncComputeTaskPool, Task, block_on, poll_once};
 use shatter_geom::fracture::{self as geom, Fracture};
-use shatter_sim::{BondModel, Material, MethodKind, Pattern};
+use shatter_sim::{BondModel, Material, MaterialPreset, MethodKind, Pattern};
 
 use crate::asset::FractureAsset;
 use crate::{FractureFailed, Fractured, ShatterSettings, convert, spawn};
@@ -58,18 +58,7 @@ pub struct Breakable {
 
 impl Default for Breakable {
     fn default() -> Self {
-        let material = Material::preset("concrete").unwrap_or(Material {
-            density: 2400.0,
-            friction: 0.6,
-            restitution: 0.1,
-            strength: 20_000.0,
-            method: MethodKind::Voronoi,
-            pattern: Pattern::Uniform,
-            compression: 30e6,
-            tension: 3e6,
-            shear: 4e6,
-            wear: 0.0,
-        });
+        let material = MaterialPreset::Concrete.material();
         Breakable {
             material,
             method: MethodKind::Voronoi,

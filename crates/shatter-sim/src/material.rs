@@ -19,6 +19,7 @@
 //! [`Material::wear`]).
 
 use serde::{Deserialize, Serialize};
+use shatter_geom::fracture::Roughness;
 pub use shatter_geom::fracture::{MethodKind, Pattern};
 
 use crate::error::SimError;
@@ -76,6 +77,12 @@ pub struct Material {
     /// the bond's health (1 when new) by `wear · x`; at health ≤ 0 it breaks. 0 turns
     /// damage off.
     pub wear: f32,
+    /// Rough cut faces: fractal noise on the interior faces of precomputed Voronoi,
+    /// tetra and slice fractures, in world units (stone and concrete by default; glass,
+    /// wood, ceramic, ice and brick off). Grids stay flat (bricks are cut square), and
+    /// runtime cuts too (roughening costs several times the cut itself).
+    #[serde(default)]
+    pub roughness: Roughness,
 }
 
 /// The names of the presets, in a fixed order (the words of [`MaterialPreset`]).
@@ -114,6 +121,11 @@ impl MaterialPreset {
             tension,
             shear,
             wear,
+            roughness: match self {
+                P::Stone => Roughness::STONE,
+                P::Concrete => Roughness::CONCRETE,
+                P::Glass | P::Wood | P::Ceramic | P::Ice | P::Brick => Roughness::OFF,
+            },
         }
     }
 
@@ -207,6 +219,9 @@ impl Material {
                 format!("must be in 0..=1, got {}", self.restitution),
             ));
         }
+        self.roughness
+            .validate()
+            .map_err(|e| SimError::invalid(format!("{key}.roughness"), e.to_string()))?;
         Ok(())
     }
 }

@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use glam::Vec3;
-use shatter_geom::fracture::{Bond, Fracture, Fragment};
+use shatter_geom::fracture::{Bond, Fracture, Fragment, Roughness};
 use shatter_geom::model::{Corners, Model};
 use shatter_geom::shapes::Shape;
 use shatter_geom::{DMat3, DVec3, TriMesh};
@@ -54,14 +54,16 @@ pub fn resolve_fracture(spec: &ObjectSpec, key: &str) -> Result<Arc<Fracture>, S
                 )));
             }
             let pattern = params.pattern.unwrap_or(spec.material.pattern);
-            geom_fracture(&shape.mesh(), params, method, pattern, key)
+            let rough = local_roughness(spec);
+            geom_fracture(&shape.mesh(), params, method, pattern, &rough, key)
         }
         FractureSource::MeshFile { path, params } => {
             let method = params.method.unwrap_or(spec.material.method);
             let pattern = params.pattern.unwrap_or(spec.material.pattern);
             let mesh = shatter_geom::io::load_mesh(path)
                 .map_err(|e| crate::scene::load::mesh_error(path, &e))?;
-            geom_fracture(&mesh, params, method, pattern, key)
+            let rough = local_roughness(spec);
+            geom_fracture(&mesh, params, method, pattern, &rough, key)
         }
     }
 }
@@ -85,12 +87,39 @@ fn resolve_whole(spec: &ObjectSpec, key: &str) -> Result<Arc<Fracture>, SimError
     Ok(Arc::new(whole))
 }
 
-/// Runs `shatter_geom::fracture` (tetra, voronoi, slice) on a mesh.
+/// The material's roughness (world units) in the object's unscaled frame, where it is
+/// fractured: amplitude over the scale's geometric mean, frequency times it (a
+/// non-uniform scale stretches the noise with the object).
+fn local_roughness(spec: &ObjectSpec) -> Roughness {
+    let s = spec.scale.as_dvec3();
+    let mean = (s.x * s.y * s.z).cbrt().max(f64::MIN_POSITIVE);
+    let r = spec.material.roughness;
+    Roughness {
+        amplitude: r.amplitude / mean,
+        frequency: r.frequency * mean,
+        // The object's own seed, so two objects of one material differ.
+        seed: r.seed ^ spec_seed(spec),
+        ..r
+    }
+}
+
+fn spec_seed(spec: &ObjectSpec) -> u64 {
+    match &spec.source {
+        FractureSource::Shape { params, .. } | FractureSource::MeshFile { params, .. } => {
+            params.seed
+        }
+        FractureSource::Prebuilt(_) => 0,
+    }
+}
+
+/// Runs `shatter_geom::fracture` (tetra, voronoi, slice) on a mesh, then roughens its cut
+/// faces (`rough`; off: nothing changes).
 fn geom_fracture(
     mesh: &TriMesh,
     params: &FractureParams,
     method: MethodKind,
     pattern: Pattern,
+    rough: &Roughness,
     key: &str,
 ) -> Result<Arc<Fracture>, SimError> {
     use shatter_geom::fracture as geom;
@@ -129,6 +158,13 @@ fn geom_fracture(
         key: key.to_string(),
         reason: e.to_string(),
     })?;
+    let mut fracture = fracture;
+    if !rough.is_off() {
+        geom::roughen(&mut fracture, rough).map_err(|e| SimError::Fracture {
+            key: format!("{key}.roughness"),
+            reason: e.to_string(),
+        })?;
+    }
     Ok(Arc::new(fracture))
 }
 
