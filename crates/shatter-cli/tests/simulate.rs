@@ -57,6 +57,26 @@ fn the_bridge_reports_the_bonds_its_stress_broke() {
 }
 
 #[test]
+fn the_runtime_scene_reports_its_cuts_and_their_depth() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = scene("runtime.toml");
+    let json = shatter(
+        dir.path(),
+        &["simulate", path.as_str(), "--seconds", "2.5", "--json"],
+    )
+    .ok()
+    .json();
+    // The bird and the pane are each cut once by their ball; the bird's loose pieces may
+    // be cut again (depth 2), never deeper.
+    assert!(json["runtime_fractures"].as_u64().unwrap() >= 2, "{json}");
+    let depth = json["max_depth"].as_u64().unwrap();
+    assert!((1..=2).contains(&depth), "{json}");
+    let health = json["min_bond_health"].as_f64().unwrap();
+    assert!((0.0..=1.0).contains(&health), "{json}");
+    assert!(json["bonds_damaged"].as_u64().is_some(), "{json}");
+}
+
+#[test]
 fn before_the_explosion_nothing_breaks() {
     let dir = tempfile::tempdir().unwrap();
     let path = scene("explosion.toml");

@@ -214,6 +214,12 @@ fn repeated_weak_hits_break_bonds_one_hit_cannot() {
     };
     let one = shots(1);
     assert_eq!(one.bonds_broken, 0, "one hit broke bonds: {one:?}");
+    // ... but it wore some: their health shows.
+    assert!(one.bonds_damaged > 0, "{one:?}");
+    assert!(
+        one.min_bond_health < 1.0 && one.min_bond_health > 0.0,
+        "{one:?}"
+    );
     let many = shots(12);
     assert!(many.bonds_broken_by_damage > 0, "twelve hits: {many:?}");
     assert_eq!(many.bonds_broken_by_impact, 0);

@@ -136,7 +136,7 @@ pub fn run(args: &SimulateArgs, ctx: &Context) -> Result<SimulateReport, CliErro
         println!("{json}");
     } else {
         println!(
-            "steps {}  bodies {}  fragments {}  bonds {}/{} broken ({} impact, {} stress, {} damage)  {:.3} ms/step  diverged {}  digest {}",
+            "steps {}  bodies {}  fragments {}  bonds {}/{} broken ({} impact, {} stress, {} damage)  {} worn (lowest health {:.2})  runtime cuts {} (depth {})  {:.3} ms/step  diverged {}  digest {}",
             report.steps,
             report.bodies,
             report.fragments,
@@ -145,6 +145,10 @@ pub fn run(args: &SimulateArgs, ctx: &Context) -> Result<SimulateReport, CliErro
             report.bonds_broken_by_impact,
             report.bonds_broken_by_stress,
             report.bonds_broken_by_damage,
+            report.bonds_damaged,
+            report.min_bond_health,
+            report.runtime_fractures,
+            report.max_depth,
             report.millis_per_step,
             report.diverged,
             report.digest

@@ -41,6 +41,10 @@ pub struct SimulateReport {
     pub runtime_fractures: usize,
     /// The deepest fracture level a runtime cut reached (0: none).
     pub max_depth: u32,
+    /// Intact bonds worn by weak hits (damage: health under 1).
+    pub bonds_damaged: usize,
+    /// The lowest health of an intact bond (1: none worn).
+    pub min_bond_health: f32,
     /// Mean wall-clock milliseconds per step.
     pub millis_per_step: f64,
     /// Bodies removed because they diverged.
@@ -71,6 +75,8 @@ impl SimulateReport {
             bonds_broken_by_damage: stats.bonds_broken_by_damage,
             runtime_fractures: stats.runtime_fractures,
             max_depth: stats.max_depth,
+            bonds_damaged: stats.bonds_damaged,
+            min_bond_health: stats.min_bond_health,
             millis_per_step: if steps > 0 {
                 total_ms / steps as f64
             } else {

@@ -99,6 +99,12 @@ impl World {
         Some(self.objects.get(&id)?.live.as_ref()?.bonds.broken.clone())
     }
 
+    /// Per bond of object `id`: its health, 1 when new, worn by hits below the break
+    /// force (damage); a broken bond keeps the health it had when it broke.
+    pub fn bond_health(&self, id: ObjectId) -> Option<Vec<f32>> {
+        Some(self.objects.get(&id)?.live.as_ref()?.bonds.health.clone())
+    }
+
     /// The bond model object `id` uses.
     pub fn object_bond_model(&self, id: ObjectId) -> Option<BondModel> {
         Some(self.objects.get(&id)?.live.as_ref()?.model)

@@ -88,6 +88,10 @@ pub struct Stats {
     pub runtime_fractures: usize,
     /// The deepest fracture level reached by a runtime cut (0: none yet).
     pub max_depth: u32,
+    /// Intact bonds worn by hits below their break force (health under 1, damage).
+    pub bonds_damaged: usize,
+    /// The lowest health of an intact bond (1: none is worn; 0 would be broken).
+    pub min_bond_health: f32,
 }
 
 /// Something noteworthy that happened during a step.

@@ -443,6 +443,7 @@ impl World {
         let mut fragments = 0;
         let mut bonds_total = 0;
         let mut by = self.retired;
+        let (mut damaged, mut min_health) = (0usize, 1.0f32);
         for record in self.objects.values() {
             bonds_total += record.prepared.fracture.bonds.len();
             if let Some(live) = &record.live {
@@ -450,8 +451,16 @@ impl World {
                 for (t, n) in by.iter_mut().zip(live.bonds.broken_by) {
                     *t += n;
                 }
+                for (&h, &broken) in live.bonds.health.iter().zip(&live.bonds.broken) {
+                    if !broken && h < 1.0 {
+                        damaged += 1;
+                        min_health = min_health.min(h);
+                    }
+                }
             }
         }
+        self.stats.bonds_damaged = damaged;
+        self.stats.min_bond_health = min_health;
         let bonds_broken = by.iter().sum();
         self.stats.bonds_broken_by_impact = by[0];
         self.stats.bonds_broken_by_stress = by[1];
