@@ -5,7 +5,9 @@
 //! Script: screenshot the scene; add an object through the Add Object panel; Start; fire
 //! at the wall; screenshot the debris; explode at the crate; Pause; Reset; load
 //! `assets/scenes/bridge.toml` through the Scene panel, Start, and screenshot the bridge
-//! before and after its pillar is blown away (the slab breaking off by stress).
+//! before and after its pillar is blown away (the slab breaking off by stress); load
+//! `assets/scenes/runtime.toml`, Start, and screenshot the bird and the pane cut where
+//! the balls landed.
 
 use std::path::PathBuf;
 
@@ -238,8 +240,38 @@ fn run_script(
                 .insert("bridge_fallen".into(), stats_json(&stats));
             true
         }
+        // Runtime fracture: two objects that start whole, cut where the balls land.
+        27 => {
+            ui_state.scene_file.path = concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/../../assets/scenes/runtime.toml"
+            )
+            .to_owned();
+            match ui_state.scene_file.load() {
+                Ok(cmd) => pending.0.push(cmd),
+                Err(e) => {
+                    test.record
+                        .insert("runtime_error".into(), json!(format!("{e:?}")));
+                }
+            }
+            true
+        }
+        28 => frames_in_step >= 10,
+        29 => {
+            test.record
+                .insert("runtime_before".into(), stats_json(&stats));
+            pending.0.push(SimCommand::Start);
+            true
+        }
+        // The balls land at about 0.9 s and 1.4 s.
+        30 => sim_in_step >= 1.7,
+        31 => {
+            shot(&mut test, "10_runtime_cut.png");
+            test.record.insert("runtime".into(), stats_json(&stats));
+            true
+        }
         // Wait for the screenshots to reach the disk.
-        27 => test.shots.iter().all(|p| p.is_file()) && frames_in_step >= 5,
+        32 => test.shots.iter().all(|p| p.is_file()) && frames_in_step >= 5,
         _ => {
             write_state(&test);
             exit.write(AppExit::Success);

@@ -73,6 +73,12 @@ pub struct SimStats {
     pub bonds_broken: usize,
     /// Of those, broken by impact, by stress and by damage.
     pub bonds_broken_by: [usize; 3],
+    /// Intact bonds worn by weak hits, and the lowest health of an intact bond (1: none).
+    pub bonds_damaged: usize,
+    pub min_bond_health: f32,
+    /// Runtime cuts since start, and the deepest fracture level they reached.
+    pub runtime_fractures: usize,
+    pub max_depth: u32,
     /// Smoothed wall-clock time of one simulation step, in ms.
     pub step_ms: f64,
     /// Simulated seconds since start.
@@ -378,6 +384,10 @@ impl SimBridge {
                 s.bonds_broken_by_stress,
                 s.bonds_broken_by_damage,
             ],
+            bonds_damaged: s.bonds_damaged,
+            min_bond_health: s.min_bond_health,
+            runtime_fractures: s.runtime_fractures,
+            max_depth: s.max_depth,
             step_ms: self.step_ms,
             time: s.time,
             running: state == RunState::Running,

@@ -77,6 +77,14 @@ fn autotest_session_breaks_bonds_and_saves_screenshots() {
     );
     // Reset restores the objects: every bond whole again.
     assert_eq!(state["after_reset"]["bonds_broken"].as_u64(), Some(0));
+    // The bridge's slab broke off by stress.
+    let stress = state["bridge_fallen"]["bonds_broken_by"][1].as_u64();
+    assert!(stress.is_some_and(|n| n > 0), "{}", state["bridge_fallen"]);
+    // The runtime scene starts as two intact bodies and both are cut.
+    assert_eq!(state["runtime_before"]["fragments"].as_u64(), Some(2));
+    let cuts = state["runtime"]["runtime_fractures"].as_u64();
+    assert!(cuts.is_some_and(|n| n >= 2), "{}", state["runtime"]);
+    assert!(state["runtime"]["fragments"].as_u64().unwrap() > 20);
 
     let shots = state["screenshots"].as_array().unwrap();
     assert!(shots.len() >= 5, "too few screenshots: {shots:?}");

@@ -64,6 +64,17 @@ fn overlay(ui: &mut Ui, stats: &SimStats, fps: f64) {
                     stats.bonds_broken_by[0], stats.bonds_broken_by[1], stats.bonds_broken_by[2]
                 ),
             ),
+            (
+                "worn bonds",
+                format!(
+                    "{} (lowest health {:.2})",
+                    stats.bonds_damaged, stats.min_bond_health
+                ),
+            ),
+            (
+                "runtime cuts",
+                format!("{} (depth {})", stats.runtime_fractures, stats.max_depth),
+            ),
             ("step", format!("{:.2} ms", stats.step_ms)),
             ("time", format!("{:.2} s", stats.time)),
         ];
