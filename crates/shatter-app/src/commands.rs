@@ -159,4 +159,7 @@ pub enum SimCommand {
     SaveScene(PathBuf),
     /// Replace the scene with a TOML file.
     LoadScene(PathBuf),
+    /// Replace the scene with one of the example scenes built into the app
+    /// ([`crate::sim_bridge::EXAMPLE_SCENES`], by name).
+    LoadExample(String),
 }

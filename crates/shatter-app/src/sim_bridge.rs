@@ -19,6 +19,31 @@ use crate::spec_convert::{from_sim_spec, projectile_points, to_sim_spec};
 /// The scene the app opens with (also embedded in the web build).
 pub const DEFAULT_SCENE: &str = include_str!("../../../assets/scenes/default.toml");
 
+/// The example scenes of `assets/scenes`, built into the app (so the web page has them
+/// too), by name, in the order the Scene panel lists them.
+pub const EXAMPLE_SCENES: &[(&str, &str)] = &[
+    ("default", DEFAULT_SCENE),
+    ("bridge", include_str!("../../../assets/scenes/bridge.toml")),
+    (
+        "collapse",
+        include_str!("../../../assets/scenes/collapse.toml"),
+    ),
+    (
+        "runtime",
+        include_str!("../../../assets/scenes/runtime.toml"),
+    ),
+    (
+        "explosion",
+        include_str!("../../../assets/scenes/explosion.toml"),
+    ),
+    ("wall", include_str!("../../../assets/scenes/wall.toml")),
+    ("bird", include_str!("../../../assets/scenes/bird.toml")),
+    (
+        "thesis_joints",
+        include_str!("../../../assets/scenes/thesis_joints.toml"),
+    ),
+];
+
 /// Bevy's vector (glam 0.32) from the simulation's (glam 0.33).
 pub fn to_bevy(v: glam::Vec3) -> Vec3 {
     Vec3::from_array(v.to_array())
@@ -73,11 +98,13 @@ pub struct SimStats {
     pub bonds_broken: usize,
     /// Of those, broken by impact, by stress and by damage.
     pub bonds_broken_by: [usize; 3],
-    /// Intact bonds worn by weak hits, and the lowest health of an intact bond (1: none).
+    /// Intact bonds worn by weak hits (damage).
     pub bonds_damaged: usize,
+    /// The lowest health of an intact bond (1: none is worn).
     pub min_bond_health: f32,
-    /// Runtime cuts since start, and the deepest fracture level they reached.
+    /// Runtime cuts since start.
     pub runtime_fractures: usize,
+    /// The deepest fracture level a runtime cut reached.
     pub max_depth: u32,
     /// Smoothed wall-clock time of one simulation step, in ms.
     pub step_ms: f64,
@@ -229,6 +256,7 @@ impl SimBridge {
                 crate::scene_store::write(&p, &text)?;
             }
             SimCommand::LoadScene(p) => self.load_scene(&p)?,
+            SimCommand::LoadExample(name) => self.load_example(&name)?,
         }
         Ok(None)
     }
@@ -242,6 +270,24 @@ impl SimBridge {
             // From the file, so mesh paths resolve relative to the scene's folder.
             Scene::load(path).map_err(|e| e.to_string())?
         };
+        let world = scene.build(self.bond_model).map_err(|e| e.to_string())?;
+        self.world = world;
+        self.accumulator = 0.0;
+        self.new_build();
+        Ok(())
+    }
+
+    /// Replace the world with the example scene `name` ([`EXAMPLE_SCENES`]); on error the
+    /// current scene stays.
+    pub fn load_example(&mut self, name: &str) -> Result<(), String> {
+        let Some((_, text)) = EXAMPLE_SCENES.iter().find(|(n, _)| *n == name) else {
+            let names: Vec<&str> = EXAMPLE_SCENES.iter().map(|(n, _)| *n).collect();
+            return Err(format!(
+                "no example scene `{name}` (there are: {})",
+                names.join(", ")
+            ));
+        };
+        let scene = Scene::parse(text).map_err(|e| format!("{name}.toml: {e}"))?;
         let world = scene.build(self.bond_model).map_err(|e| e.to_string())?;
         self.world = world;
         self.accumulator = 0.0;

@@ -370,3 +370,25 @@ fn the_state_line_the_web_page_reads_is_json_with_the_counts() {
     assert_eq!(json["fragments"], s.fragments as u64);
     assert_eq!(json["running"], true);
 }
+
+#[test]
+fn every_example_scene_loads_and_the_runtime_one_starts_whole() {
+    let mut b = SimBridge::default_scene();
+    for (name, _) in shatter_app::sim_bridge::EXAMPLE_SCENES {
+        b.apply(SimCommand::LoadExample((*name).to_owned()))
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert!(b.stats().fragments > 0, "{name} has no fragments");
+    }
+    b.apply(SimCommand::LoadExample("runtime".into())).unwrap();
+    assert_eq!(b.stats().fragments, 2, "the bird and the pane start whole");
+    b.apply(SimCommand::Start).unwrap();
+    steps(&mut b, 110);
+    let s = b.stats();
+    assert!(s.runtime_fractures >= 2, "{s:?}");
+    assert!(s.fragments > 20);
+    let err = b.apply(SimCommand::LoadExample("nope".into())).unwrap_err();
+    assert!(
+        err.contains("no example scene `nope`") && err.contains("runtime"),
+        "{err}"
+    );
+}

@@ -372,4 +372,12 @@ fn scene_file_panel(ui: &mut Ui, s: &mut UiState, out: &mut Vec<SimCommand>) {
         }
     });
     error_line(ui, &s.scene_errors, "path");
+    ui.horizontal_wrapped(|ui| {
+        ui.label("Examples");
+        for (name, _) in crate::sim_bridge::EXAMPLE_SCENES {
+            if ui.small_button(*name).clicked() {
+                out.push(SimCommand::LoadExample((*name).to_owned()));
+            }
+        }
+    });
 }
