@@ -199,6 +199,21 @@ fn a_cut_keeps_the_momentum_and_spin_the_body_had() {
         world.object_bodies(cut).len(),
         world.object_fracture(cut).unwrap().fragments.len()
     );
+    // One Split event names every part: each fragment alone, each once.
+    let parts: Vec<Vec<u32>> = world
+        .take_events()
+        .into_iter()
+        .filter_map(|e| match e {
+            SimEvent::Split { object, parts } if object == cut.0 => Some(parts),
+            _ => None,
+        })
+        .flatten()
+        .collect();
+    let n = world.object_fracture(cut).unwrap().fragments.len();
+    assert_eq!(parts.len(), n, "{parts:?}");
+    let mut all: Vec<u32> = parts.iter().flatten().copied().collect();
+    all.sort_unstable();
+    assert_eq!(all, (0..n as u32).collect::<Vec<_>>());
     let (p2, l2) = world.object_momentum(cut, point);
     assert!((p2 - p0).length() / p0.length() < 1e-4, "{p0} -> {p2}");
     assert!((l2 - l0).length() / l0.length() < 1e-4, "{l0} -> {l2}");

@@ -115,6 +115,14 @@ pub enum SimEvent {
         /// How many.
         count: usize,
     },
+    /// A body of an object split into parts when bonds broke: the fragments of each part,
+    /// the part that kept the old body first (the others are new bodies).
+    Split {
+        /// The object.
+        object: u32,
+        /// Per part, its fragments (ascending).
+        parts: Vec<Vec<u32>>,
+    },
     /// A fragment was cut at runtime into a new object.
     Fractured {
         /// The object the fragment belonged to.

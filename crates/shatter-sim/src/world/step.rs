@@ -251,7 +251,7 @@ impl World {
                 continue;
             };
             let bodies = clusters::break_loaded(live, &loads);
-            split_bodies(
+            let splits = split_bodies(
                 &mut self.physics,
                 &mut self.debris,
                 live,
@@ -259,6 +259,9 @@ impl World {
                 bodies,
                 &loads.impulses,
             );
+            for parts in splits {
+                self.events.push(SimEvent::Split { object, parts });
+            }
         }
     }
 
@@ -479,7 +482,8 @@ impl World {
 }
 
 /// Splits each of `bodies` into its components and lists the new single-fragment dynamic
-/// bodies as debris.
+/// bodies as debris. Returns, per body that split, the fragments of each of its parts
+/// (the part that kept the old body first).
 pub(crate) fn split_bodies(
     physics: &mut PhysicsWorld,
     debris: &mut std::collections::VecDeque<(u32, RigidBodyHandle)>,
@@ -487,15 +491,25 @@ pub(crate) fn split_bodies(
     object: u32,
     bodies: Vec<RigidBodyHandle>,
     impulses: &BTreeMap<u32, (Vec3, f32)>,
-) {
+) -> Vec<Vec<Vec<u32>>> {
+    let mut splits = Vec::new();
     for body in bodies {
         let new = split::split(physics, live, object, body, impulses);
+        if new.is_empty() {
+            continue;
+        }
+        let mut parts = Vec::new();
         for h in std::iter::once(body).chain(new) {
-            let single = live.body.iter().filter(|b| **b == Some(h)).count() == 1;
+            let fragments: Vec<u32> = (0..live.body.len() as u32)
+                .filter(|&f| live.body[f as usize] == Some(h))
+                .collect();
             let dynamic = physics.bodies.get(h).is_some_and(|rb| rb.is_dynamic());
-            if single && dynamic && !debris.contains(&(object, h)) {
+            if fragments.len() == 1 && dynamic && !debris.contains(&(object, h)) {
                 debris.push_back((object, h));
             }
+            parts.push(fragments);
         }
+        splits.push(parts);
     }
+    splits
 }

@@ -12,6 +12,7 @@ use web_time::Instant;
 use crate::bonds::tags::{Kind, untag};
 use crate::object::ExplosionSpec;
 use crate::world::settings::BreakCause;
+use crate::world::settings::SimEvent;
 use crate::world::state::World;
 use crate::world::step::{ContactHit, split_bodies};
 
@@ -91,7 +92,7 @@ impl World {
                 .into_iter()
                 .map(|(i, g)| RigidBodyHandle::from_raw_parts(i, g))
                 .collect();
-            split_bodies(
+            let splits = split_bodies(
                 &mut self.physics,
                 &mut self.debris,
                 live,
@@ -99,6 +100,12 @@ impl World {
                 bodies,
                 &impulses,
             );
+            for parts in splits {
+                self.events.push(SimEvent::Split {
+                    object: id.0,
+                    parts,
+                });
+            }
         }
         self.stats.stress_solves += solves as u64;
         self.stats.stress_iterations = iterations;
