@@ -344,6 +344,7 @@ impl SimBridge {
                 )),
                 SimEvent::Expired(_)
                 | SimEvent::BondsBroken { .. }
+                | SimEvent::Split { .. }
                 | SimEvent::Fractured { .. } => None,
             })
             .collect()
