@@ -1,6 +1,8 @@
 //! Criterion benchmarks of fracture: the bird into 100 Voronoi cells (compare with
 //! Blender's Cell Fracture) and the thesis's creation case (cube, 500 random points,
-//! tetra); rough cut faces on the bird's 100 cells.
+//! tetra); rough cut faces on the bird's 100 cells; the runtime cut (issue 16: the bird
+//! into 50 radial cells around a hit on its front, 4 ms on one core is the budget; run
+//! with `RAYON_NUM_THREADS=1` for that figure).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use shatter_geom::fracture::{
@@ -21,6 +23,27 @@ fn bench(c: &mut Criterion) {
     };
     c.bench_function("fracture/voronoi_bird_100", |b| {
         b.iter(|| fracture(&bird, &voronoi).expect("bird fractures"))
+    });
+
+    // As `shatter_sim::runtime::cut_at` cuts the bird hit on its front (the vertex
+    // farthest along +z, as `shatter bench runtime` hits it).
+    let front = bird
+        .positions
+        .iter()
+        .copied()
+        .max_by(|a, b| a.z.total_cmp(&b.z).then(a.x.total_cmp(&b.x)))
+        .expect("the bird has vertices");
+    let radial = FractureParams {
+        method: Method::Voronoi {
+            pieces: 50,
+            pattern: Pattern::Radial,
+            impact: Some(front),
+            seeds: None,
+        },
+        seed: 1,
+    };
+    c.bench_function("fracture/radial_bird_50_at_front", |b| {
+        b.iter(|| fracture(&bird, &radial).expect("bird fractures"))
     });
 
     let cells = fracture(&bird, &voronoi).expect("bird fractures");

@@ -7,8 +7,9 @@
 use glam::DVec3;
 
 use super::clip::split_keeping_faces;
+use super::edges::{Edge, for_each_edge};
 use super::{Piece, Plane, SURFACE, is_surface};
-use crate::util::{FastMap, UnionFind};
+use crate::util::UnionFind;
 
 /// Relative tolerance (of the fragment's size) for convexity tests.
 const CONVEX_TOL: f64 = 1e-2;
@@ -135,28 +136,30 @@ fn components_with_worst_face(mut p: Piece, tol: f64) -> Vec<(f64, Option<Plane>
 const NO_NEIGHBOUR: u32 = u32::MAX;
 
 /// Per triangle of `p`, the triangle across each edge `k` (`tri[k] → tri[k + 1]`), found
-/// by pairing each directed edge with its reverse (one map operation per edge; the map
-/// holds only the unpaired ones), and the union of the triangles and faces so joined
-/// (face `f` is element `tris.len() + f`). An edge shared with a face has no neighbour
-/// triangle: a face is a cut, which makes no concave edge.
+/// by pairing each directed edge with an unpaired reverse before it (in
+/// [`Piece::edges`] order, per undirected edge: [`for_each_edge`], no map), and the
+/// union of the triangles and faces so joined (face `f` is element `tris.len() + f`).
+/// An edge shared with a face has no neighbour triangle: a face is a cut, which makes no
+/// concave edge.
 fn neighbours(p: &Piece) -> (Vec<[u32; 3]>, UnionFind) {
     let n = p.tris.len();
     let mut nbr = vec![[NO_NEIGHBOUR; 3]; n];
-    let mut open: FastMap<u64, (u32, u8)> = FastMap::default();
-    open.reserve(p.edge_count() / 2 + 1);
     let mut uf = UnionFind::new(n + p.faces.len());
-    // A face's edges carry slot 3, which names no triangle edge.
-    for (t, k, a, b) in p.edges() {
-        if let Some((u, j)) = open.remove(&(u64::from(b) << 32 | u64::from(a))) {
-            if k < 3 && j < 3 {
-                nbr[t][k as usize] = u;
-                nbr[u as usize][j as usize] = t as u32;
+    // Per undirected edge, its unpaired directed edge in each direction (from the lower
+    // vertex, from the upper); a later one of the same direction replaces it. A face's
+    // edges carry slot 3, which names no triangle edge.
+    for_each_edge(p, |open: &mut [Option<Edge>; 2], e| {
+        let dir = usize::from(e.a > e.b);
+        if let Some(u) = open[1 - dir].take() {
+            if e.slot < 3 && u.slot < 3 {
+                nbr[e.elem as usize][e.slot as usize] = u.elem;
+                nbr[u.elem as usize][u.slot as usize] = e.elem;
             }
-            uf.union(t, u as usize);
+            uf.union(e.elem as usize, u.elem as usize);
         } else {
-            open.insert(u64::from(a) << 32 | u64::from(b), (t as u32, k));
+            open[dir] = Some(e);
         }
-    }
+    });
     (nbr, uf)
 }
 

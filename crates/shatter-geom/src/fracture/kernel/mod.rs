@@ -5,6 +5,7 @@
 pub(crate) mod cap;
 pub(crate) mod clip;
 pub(crate) mod convex;
+mod edges;
 mod face;
 mod piece;
 mod plane;

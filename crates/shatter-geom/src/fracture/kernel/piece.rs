@@ -1,11 +1,10 @@
 //! The working representation of a solid during fracture: an indexed, welded triangle
 //! mesh whose triangles carry the tag of the cut that created them.
 
-use std::collections::hash_map::Entry;
-
 use glam::DVec3;
 
 use super::Face;
+use super::edges::for_each_edge;
 use crate::TriMesh;
 use crate::mesh::position_key;
 use crate::util::{FastMap, UnionFind};
@@ -175,11 +174,6 @@ impl Piece {
         tri_edges.chain(face_edges)
     }
 
-    /// Number of [`Piece::edges`].
-    pub fn edge_count(&self) -> usize {
-        3 * self.tris.len() + self.faces.iter().map(|f| f.edges.len()).sum::<usize>()
-    }
-
     /// Signed volume (positive for a closed outward solid), faces included: each face
     /// edge makes a triangle with the face's first vertex, and these triangles add up
     /// to the face's polygon (holes and several loops included).
@@ -237,19 +231,12 @@ impl Piece {
         self.faces_into_regions();
         let n = self.tris.len();
         let mut uf = UnionFind::new(n + self.faces.len());
-        // Undirected edge -> its first element (triangle, or face `n + f`): one map
-        // operation per edge.
-        let mut edge_owner: FastMap<u64, usize> = FastMap::default();
-        edge_owner.reserve(self.edge_count() / 2 + 1);
-        for (t, _, a, b) in self.edges() {
-            let key = u64::from(a.min(b)) << 32 | u64::from(a.max(b));
-            match edge_owner.entry(key) {
-                Entry::Occupied(o) => uf.union(*o.get(), t),
-                Entry::Vacant(v) => {
-                    v.insert(t);
-                }
-            }
-        }
+        // Each element (triangle, face `n + f`) is joined to the first along each of
+        // its undirected edges.
+        for_each_edge(&self, |first: &mut Option<u32>, e| match *first {
+            Some(f) => uf.union(f as usize, e.elem as usize),
+            None => *first = Some(e.elem),
+        });
         self.into_groups(&mut uf).0
     }
 

@@ -20,7 +20,7 @@ use glam::DVec3;
 
 use super::cap::triangulate_cap;
 use super::{Piece, Plane, is_surface};
-use crate::util::{FastMap, UnionFind};
+use crate::util::{FastMap, FastSet, UnionFind};
 
 /// Why two pieces could not be joined into one closed 2-manifold.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -60,6 +60,7 @@ fn weld_within(p: &mut Piece, member: &mut Vec<u32>, eps: f64) {
     let cell = (2.0 * eps).max(f64::MIN_POSITIVE);
     let key = |q: DVec3| (q / cell).floor().as_i64vec3();
     let mut grid: FastMap<glam::I64Vec3, Vec<u32>> = FastMap::default();
+    grid.reserve(p.pos.len());
     let mut pos: Vec<DVec3> = Vec::with_capacity(p.pos.len());
     let mut remap = Vec::with_capacity(p.pos.len());
     for &q in &p.pos {
@@ -180,6 +181,7 @@ fn cancel_opposite_triangles(p: &mut Piece, member: &mut Vec<u32>) {
         }
     };
     let mut seen: FastMap<[u32; 3], Vec<usize>> = FastMap::default();
+    seen.reserve(p.tris.len());
     let mut remove = vec![false; p.tris.len()];
     let mut any = false;
     for (t, &tri) in p.tris.iter().enumerate() {
@@ -223,6 +225,7 @@ fn cap_regions(p: &Piece, member: &[u32]) -> Vec<Region> {
     let n = p.tris.len();
     let mut uf = UnionFind::new(n);
     let mut owner: FastMap<(u64, u32, u32, u32), usize> = FastMap::default();
+    owner.reserve(3 * n);
     for (t, tri) in p.tris.iter().enumerate() {
         if is_surface(p.tags[t]) {
             continue;
@@ -238,14 +241,16 @@ fn cap_regions(p: &Piece, member: &[u32]) -> Vec<Region> {
             }
         }
     }
-    let mut slot: FastMap<usize, usize> = FastMap::default();
+    // Region of each root triangle.
+    let mut slot: Vec<usize> = vec![usize::MAX; n];
     let mut regions: Vec<Region> = Vec::new();
     for (t, tri) in p.tris.iter().enumerate() {
         if is_surface(p.tags[t]) {
             continue;
         }
         let root = uf.find(t);
-        let r = *slot.entry(root).or_insert_with(|| {
+        if slot[root] == usize::MAX {
+            slot[root] = regions.len();
             regions.push(Region {
                 tag: p.tags[t],
                 member: member[t],
@@ -256,8 +261,8 @@ fn cap_regions(p: &Piece, member: &[u32]) -> Vec<Region> {
                 lo: DVec3::splat(f64::INFINITY),
                 hi: DVec3::splat(f64::NEG_INFINITY),
             });
-            regions.len() - 1
-        });
+        }
+        let r = slot[root];
         let [a, b, c] = tri.map(|i| p.pos[i as usize]);
         let cross = (b - a).cross(c - a) / 2.0;
         let area = cross.length();
@@ -376,17 +381,18 @@ fn close_t_junctions(p: &mut Piece, member: &mut Vec<u32>, eps: f64) -> Result<(
 
 /// Directed edges `(triangle, slot, from, to)` whose reverse is missing.
 fn open_edges(p: &Piece) -> Vec<(usize, usize, u32, u32)> {
-    let mut count: FastMap<(u32, u32), i32> = FastMap::default();
+    let mut edges: FastSet<(u32, u32)> = FastSet::default();
+    edges.reserve(3 * p.tris.len());
     for tri in &p.tris {
         for k in 0..3 {
-            *count.entry((tri[k], tri[(k + 1) % 3])).or_default() += 1;
+            edges.insert((tri[k], tri[(k + 1) % 3]));
         }
     }
     let mut open = Vec::new();
     for (t, tri) in p.tris.iter().enumerate() {
         for k in 0..3 {
             let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            if !count.contains_key(&(b, a)) {
+            if !edges.contains(&(b, a)) {
                 open.push((t, k, a, b));
             }
         }
@@ -397,6 +403,7 @@ fn open_edges(p: &Piece) -> Vec<(usize, usize, u32, u32)> {
 /// Every directed edge once, with its reverse once: a closed 2-manifold by edges.
 fn check_closed(p: &Piece) -> Result<(), UnionError> {
     let mut count: FastMap<(u32, u32), u32> = FastMap::default();
+    count.reserve(3 * p.tris.len());
     for tri in &p.tris {
         for k in 0..3 {
             let e = count.entry((tri[k], tri[(k + 1) % 3])).or_default();
@@ -421,6 +428,7 @@ fn join_coplanar_caps(p: &mut Piece, member: &[u32]) {
     let n = p.tris.len();
     let mut uf = UnionFind::new(n);
     let mut owner: FastMap<(u64, u32, u32), usize> = FastMap::default();
+    owner.reserve(3 * n);
     for (t, tri) in p.tris.iter().enumerate() {
         if is_surface(p.tags[t]) {
             continue;
@@ -483,11 +491,12 @@ fn join_coplanar_caps(p: &mut Piece, member: &[u32]) {
 /// A new triangulation of the planar region made of triangles `ts`, or `None` when it
 /// would not cover the same area the same way.
 fn retriangulate(p: &Piece, ts: &[usize]) -> Option<Vec<[u32; 3]>> {
-    let mut inner: FastMap<(u32, u32), ()> = FastMap::default();
+    let mut inner: FastSet<(u32, u32)> = FastSet::default();
+    inner.reserve(3 * ts.len());
     for &t in ts {
         let tri = p.tris[t];
         for k in 0..3 {
-            inner.insert((tri[k], tri[(k + 1) % 3]), ());
+            inner.insert((tri[k], tri[(k + 1) % 3]));
         }
     }
     // The rim as the solid's side sees it (reversed), as the cap triangulation takes it.
@@ -502,7 +511,7 @@ fn retriangulate(p: &Piece, ts: &[usize]) -> Option<Vec<[u32; 3]>> {
         area += cross.length();
         for k in 0..3 {
             let (u, v) = (tri[k], tri[(k + 1) % 3]);
-            if !inner.contains_key(&(v, u)) {
+            if !inner.contains(&(v, u)) {
                 rim.push((v, u));
             }
         }
