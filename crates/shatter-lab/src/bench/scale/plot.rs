@@ -1,0 +1,60 @@
+//! The scale benchmark's plots: milliseconds per step against fragments, one line per
+//! case and bond model; `scale_mean_ms` (the mean step) and `scale_max_ms` (the worst).
+
+use std::path::{Path, PathBuf};
+
+use shatter_geom::progress::Progress;
+use shatter_report::plot::{LinePlot, Series};
+
+use super::{ScaleCase, ScaleRow};
+use crate::error::LabError;
+use crate::output;
+
+/// What a plot shows of a row.
+type Measure = fn(&ScaleRow) -> f64;
+
+/// The lines of one measure: per case (in `cases`' order) and bond model (in the rows'
+/// order), its rows' `(fragments, measure)`.
+pub fn lines(rows: &[ScaleRow], cases: &[ScaleCase], measure: Measure) -> Vec<Series> {
+    let mut series = Vec::new();
+    for case in cases {
+        let mut models: Vec<&str> = Vec::new();
+        for r in rows.iter().filter(|r| r.case == case.name()) {
+            if !models.contains(&r.model.as_str()) {
+                models.push(&r.model);
+            }
+        }
+        for model in models {
+            let points = rows
+                .iter()
+                .filter(|r| r.case == case.name() && r.model == model)
+                .map(|r| (r.fragments as f64, measure(r)))
+                .collect();
+            series.push(Series::new(format!("{case}, {model}"), points));
+        }
+    }
+    series
+}
+
+/// Writes both plots (PNG and SVG) into `dir`; returns their paths.
+pub fn write(
+    dir: &Path,
+    rows: &[ScaleRow],
+    cases: &[ScaleCase],
+    progress: &Progress,
+) -> Result<Vec<PathBuf>, LabError> {
+    let steps = rows.first().map_or(0, |r| r.steps);
+    let measures: [(&str, &str, Measure); 2] = [
+        ("scale_mean_ms", "mean", |r| r.mean_ms),
+        ("scale_max_ms", "worst", |r| r.max_ms),
+    ];
+    let mut written = Vec::new();
+    for (stem, what, measure) in measures {
+        let series = lines(rows, cases, measure);
+        let title = format!("Step time against fragments ({what} of {steps} steps)");
+        let y_label = format!("{what} step [ms]");
+        let plot = LinePlot::new(&series, &title, "fragments", &y_label);
+        written.extend(output::write_plot(&plot, &dir.join(stem), progress)?);
+    }
+    Ok(written)
+}
