@@ -67,6 +67,11 @@ pub struct ScaleRow {
     pub mean_ms: f64,
     /// Worst step (ms).
     pub max_ms: f64,
+    /// CPU milliseconds of the stepping thread per step, over the whole run (`None` where
+    /// the thread's CPU time cannot be read): unlike the wall clock, not inflated by other
+    /// processes on a busy machine (the step runs on one thread). The kernel counts it at
+    /// its scheduler tick (a few ms), so it is a mean only, and rough for short runs.
+    pub cpu_mean_ms: Option<f64>,
     /// Rigid bodies at the end (fragments' bodies and projectiles; not the ground).
     pub bodies: usize,
     /// Fragments whose pose did not change over the last step: on sleeping bodies or
@@ -200,6 +205,13 @@ impl ScaleConfig {
     }
 }
 
+/// CPU time of the calling thread in nanoseconds (Linux: `/proc/thread-self/schedstat`'s
+/// first field), `None` where it cannot be read.
+fn thread_cpu_ns() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    text.split_whitespace().next()?.parse().ok()
+}
+
 /// Fragments with a body in both lists whose pose is the same in both.
 fn unchanged(before: &[(u32, Pose)], after: &[(u32, Pose)]) -> usize {
     let mut i = 0;
@@ -239,6 +251,7 @@ fn measure(
     } else {
         Vec::new()
     };
+    let cpu_start = thread_cpu_ns();
     world.run_steps(steps, &ctx.progress, |world, done| {
         let ms = world.stats().last_step_ms;
         total += ms;
@@ -248,6 +261,9 @@ fn measure(
         }
         Ok::<(), LabError>(())
     })?;
+    let cpu_mean_ms = cpu_start
+        .zip(thread_cpu_ns())
+        .map(|(a, b)| b.saturating_sub(a) as f64 / 1e6 / steps as f64);
     let stats = world.stats();
     Ok(ScaleRow {
         case: case.name().to_string(),
@@ -259,6 +275,7 @@ fn measure(
         build_ms,
         mean_ms: total / steps as f64,
         max_ms: max,
+        cpu_mean_ms,
         bodies: stats.bodies,
         still_fragments: unchanged(&before, &world.fragment_poses(id)),
         diverged: stats.diverged,
