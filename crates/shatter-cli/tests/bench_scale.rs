@@ -52,7 +52,7 @@ fn bench_scale_reports_a_row_per_case_model_and_size_and_writes_the_plots() {
         );
         assert_eq!(row["diverged"], 0, "{row}");
     }
-    for stem in ["scale_mean_ms", "scale_max_ms"] {
+    for stem in ["scale_mean_ms", "scale_max_ms", "scale_cpu_ms"] {
         for ext in ["png", "svg"] {
             let path = dir.path().join("plots").join(format!("{stem}.{ext}"));
             assert!(

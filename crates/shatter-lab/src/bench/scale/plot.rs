@@ -1,5 +1,6 @@
 //! The scale benchmark's plots: milliseconds per step against fragments, one line per
-//! case and bond model; `scale_mean_ms` (the mean step) and `scale_max_ms` (the worst).
+//! case and bond model; `scale_mean_ms` (the mean step), `scale_max_ms` (the worst) and
+//! `scale_cpu_ms` (the stepping thread's CPU per step, where it was measured).
 
 use std::path::{Path, PathBuf};
 
@@ -10,8 +11,8 @@ use super::{ScaleCase, ScaleRow};
 use crate::error::LabError;
 use crate::output;
 
-/// What a plot shows of a row.
-type Measure = fn(&ScaleRow) -> f64;
+/// What a plot shows of a row (`None`: not measured; the row is left out).
+type Measure = fn(&ScaleRow) -> Option<f64>;
 
 /// The lines of one measure: per case (in `cases`' order) and bond model (in the rows'
 /// order), its rows' `(fragments, measure)`.
@@ -28,9 +29,11 @@ pub fn lines(rows: &[ScaleRow], cases: &[ScaleCase], measure: Measure) -> Vec<Se
             let points = rows
                 .iter()
                 .filter(|r| r.case == case.name() && r.model == model)
-                .map(|r| (r.fragments as f64, measure(r)))
-                .collect();
-            series.push(Series::new(format!("{case}, {model}"), points));
+                .filter_map(|r| Some((r.fragments as f64, measure(r)?)))
+                .collect::<Vec<_>>();
+            if !points.is_empty() {
+                series.push(Series::new(format!("{case}, {model}"), points));
+            }
         }
     }
     series
@@ -44,15 +47,19 @@ pub fn write(
     progress: &Progress,
 ) -> Result<Vec<PathBuf>, LabError> {
     let steps = rows.first().map_or(0, |r| r.steps);
-    let measures: [(&str, &str, Measure); 2] = [
-        ("scale_mean_ms", "mean", |r| r.mean_ms),
-        ("scale_max_ms", "worst", |r| r.max_ms),
+    let measures: [(&str, &str, Measure); 3] = [
+        ("scale_mean_ms", "mean", |r| Some(r.mean_ms)),
+        ("scale_max_ms", "worst", |r| Some(r.max_ms)),
+        ("scale_cpu_ms", "CPU of the", |r| r.cpu_mean_ms),
     ];
     let mut written = Vec::new();
     for (stem, what, measure) in measures {
         let series = lines(rows, cases, measure);
+        if series.is_empty() {
+            continue;
+        }
         let title = format!("Step time against fragments ({what} of {steps} steps)");
-        let y_label = format!("{what} step [ms]");
+        let y_label = format!("{what} step [ms]").replace("CPU of the step", "CPU per step");
         let plot = LinePlot::new(&series, &title, "fragments", &y_label);
         written.extend(output::write_plot(&plot, &dir.join(stem), progress)?);
     }
