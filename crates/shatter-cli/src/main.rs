@@ -22,8 +22,8 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use clap::{Parser, Subcommand};
 
 use crate::commands::{
-    bench_creation, bench_delaunay, bench_fracture, bench_runtime, bench_step, bench_stress,
-    fracture, inspect, shape, simulate, study, tetrahedralize,
+    bench_creation, bench_delaunay, bench_fracture, bench_runtime, bench_scale, bench_step,
+    bench_stress, fracture, inspect, shape, simulate, study, tetrahedralize,
 };
 use crate::context::Context;
 use crate::error::CliError;
@@ -72,6 +72,9 @@ enum BenchCommand {
     /// Runtime fracture: a cut at the impact on the bird and the cube, on one core by
     /// default.
     Runtime(bench_runtime::BenchRuntimeArgs),
+    /// Step time against the number of fragments (2k to 20k bricks by default) for both
+    /// bond models: a wall hit by shots, an explosion in a wall, a block landing.
+    Scale(bench_scale::BenchScaleArgs),
     /// Time the stress solver on a 20,000-bond graph.
     Stress(bench_stress::BenchStressArgs),
     /// The thesis's creation time against random points, with CSV and plots.
@@ -98,6 +101,7 @@ fn run(command: &Command, ctx: &Context) -> Result<(), CliError> {
         Command::Bench(BenchCommand::Fracture(a)) => bench_fracture::run(a, ctx),
         Command::Bench(BenchCommand::Step(a)) => bench_step::run(a, ctx).map(|_| ()),
         Command::Bench(BenchCommand::Runtime(a)) => bench_runtime::run(a, ctx),
+        Command::Bench(BenchCommand::Scale(a)) => bench_scale::run(a, ctx).map(|_| ()),
         Command::Bench(BenchCommand::Stress(a)) => bench_stress::run(a, ctx).map(|_| ()),
         Command::Bench(BenchCommand::Creation(a)) => bench_creation::run(a, ctx),
         Command::Study(a) => study::run(a, ctx),

@@ -12,7 +12,7 @@ use std::sync::Mutex;
 
 use shatter_geom::progress::Progress;
 
-use crate::error::LabError;
+use crate::error::{LabError, ResultExt};
 
 /// The temporary files being written now.
 static TEMP_FILES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
@@ -95,6 +95,24 @@ pub fn write_file(
             .sync_all()
             .map_err(fail)
     })
+}
+
+/// Writes `plot` as `base.png` and `base.svg`, each through a temporary file; returns
+/// their paths.
+pub fn write_plot(
+    plot: &shatter_report::plot::LinePlot<'_>,
+    base: &Path,
+    progress: &Progress,
+) -> Result<[PathBuf; 2], LabError> {
+    let png = base.with_extension("png");
+    let svg = base.with_extension("svg");
+    via_temp_path(&png, progress, |temp| {
+        plot.write_png(temp).internal_err("writing a plot")
+    })?;
+    via_temp_path(&svg, progress, |temp| {
+        plot.write_svg(temp).internal_err("writing a plot")
+    })?;
+    Ok([png, svg])
 }
 
 #[cfg(test)]

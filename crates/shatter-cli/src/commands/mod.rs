@@ -9,6 +9,7 @@ pub mod bench_creation;
 pub mod bench_delaunay;
 pub mod bench_fracture;
 pub mod bench_runtime;
+pub mod bench_scale;
 pub mod bench_step;
 pub mod bench_stress;
 pub mod fracture;

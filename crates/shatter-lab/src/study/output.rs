@@ -145,20 +145,7 @@ fn plots(
             let base = config
                 .out
                 .join(format!("study_{}_{stem}", study.name().replace('-', "_")));
-            for (path, svg) in [
-                (base.with_extension("png"), false),
-                (base.with_extension("svg"), true),
-            ] {
-                output::via_temp_path(&path, progress, |temp| {
-                    if svg {
-                        plot.write_svg(temp)
-                    } else {
-                        plot.write_png(temp)
-                    }
-                    .internal_err("writing a study plot")
-                })?;
-                written.push(path);
-            }
+            written.extend(output::write_plot(&plot, &base, progress)?);
         }
     }
     Ok(written)

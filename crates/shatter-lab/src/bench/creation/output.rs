@@ -122,15 +122,7 @@ fn write_plot(
     progress: &Progress,
 ) -> Result<[PathBuf; 2], LabError> {
     let plot = LinePlot::new(series, title, "random points", "time to create [ms]");
-    let png = dir.join(format!("{stem}.png"));
-    let svg = dir.join(format!("{stem}.svg"));
-    output::via_temp_path(&png, progress, |temp| {
-        plot.write_png(temp).internal_err("writing a plot")
-    })?;
-    output::via_temp_path(&svg, progress, |temp| {
-        plot.write_svg(temp).internal_err("writing a plot")
-    })?;
-    Ok([png, svg])
+    output::write_plot(&plot, &dir.join(stem), progress)
 }
 
 /// Writes the plots into the configuration's folder; returns their paths.

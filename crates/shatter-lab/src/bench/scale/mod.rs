@@ -1,0 +1,319 @@
+//! The scale benchmark (`shatter bench scale`): brick worlds of growing size (2k, 5k, 10k
+//! and 20k fragments by default) for each bond model and case ([`ScaleCase`]: a wall hit
+//! by shots, an explosion in a wall, a block shattering on landing), run for some
+//! simulated seconds. Per run: milliseconds per step (mean and worst), bodies, fragments
+//! at rest and diverged bodies; and a plot of ms/step against fragments.
+//!
+//! Sleeping bodies: `shatter_sim::World` does not say which of its Rapier bodies sleep.
+//! What its public API shows is each fragment's pose, so a run counts the fragments
+//! whose pose did not change at all over its last step ([`ScaleRow::still_fragments`]):
+//! those on sleeping bodies, and on fixed ones (an intact anchored cluster).
+
+mod plot;
+mod worlds;
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use shatter_geom::budget::{Estimate, format_count};
+use shatter_sim::scene::budget::{bodies_estimate, run_estimate};
+use shatter_sim::{BondModel, Pose};
+
+pub use worlds::{ScaleCase, bricks, grid_for};
+
+use crate::bench::step::steps_of;
+use crate::context::Context;
+use crate::error::{LabError, ResultExt};
+use crate::names::parse_list;
+
+/// The options of the scale benchmark, as given (named after `shatter bench scale`'s
+/// flags; [`run`] validates them).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BenchScaleOptions {
+    /// About how many fragments each world has (rounded to a grid of bricks).
+    pub sizes: Vec<usize>,
+    /// Bond models, by name: joints, clusters.
+    pub models: Vec<String>,
+    /// Cases, by name: shots, explosion, landing.
+    pub cases: Vec<String>,
+    /// Simulated seconds per run.
+    pub seconds: f64,
+    /// Folder for the plots (created if missing).
+    pub out: PathBuf,
+}
+
+/// The largest world one run may ask for (the estimate refuses what the machine cannot
+/// run well before this).
+pub const MAX_SIZE: usize = 10_000_000;
+
+/// One run: one case, size and bond model.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct ScaleRow {
+    /// The case's name.
+    pub case: String,
+    /// The bond model's name.
+    pub model: String,
+    /// The size asked for (`--sizes`).
+    pub requested: usize,
+    /// The grid of bricks built for it.
+    pub grid: [u32; 3],
+    /// Fragments built.
+    pub fragments: usize,
+    /// Steps run.
+    pub steps: u64,
+    /// Milliseconds to build the world (the grid and its bodies).
+    pub build_ms: f64,
+    /// Mean milliseconds per step.
+    pub mean_ms: f64,
+    /// Worst step (ms).
+    pub max_ms: f64,
+    /// CPU milliseconds of the stepping thread per step, over the whole run (`None` where
+    /// the thread's CPU time cannot be read): unlike the wall clock, not inflated by other
+    /// processes on a busy machine (the step runs on one thread). The kernel counts it at
+    /// its scheduler tick (a few ms), so it is a mean only, and rough for short runs.
+    pub cpu_mean_ms: Option<f64>,
+    /// Rigid bodies at the end (fragments' bodies and projectiles; not the ground).
+    pub bodies: usize,
+    /// Fragments whose pose did not change over the last step: on sleeping bodies or
+    /// fixed ones (the world does not expose Rapier's sleeping flag).
+    pub still_fragments: usize,
+    /// Bodies removed because their state diverged.
+    pub diverged: usize,
+    /// Bonds broken since the start.
+    pub bonds_broken: usize,
+}
+
+/// What the benchmark measured.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct BenchScaleReport {
+    /// Simulated seconds per run.
+    pub seconds: f64,
+    /// Steps per run.
+    pub steps: u64,
+    /// The estimate checked before the runs (s).
+    pub estimated_seconds: f64,
+    /// Wall-clock seconds of all runs (building included).
+    pub measured_seconds: f64,
+    /// One row per case, model and size, in that nesting order.
+    pub rows: Vec<ScaleRow>,
+    /// The plots written (PNG and SVG).
+    pub plots: Vec<PathBuf>,
+}
+
+/// The validated options.
+#[derive(Debug, Clone, PartialEq)]
+struct ScaleConfig {
+    sizes: Vec<usize>,
+    models: Vec<BondModel>,
+    cases: Vec<ScaleCase>,
+    seconds: f64,
+    steps: u64,
+}
+
+impl ScaleConfig {
+    fn new(o: &BenchScaleOptions) -> Result<Self, LabError> {
+        if !(o.seconds.is_finite() && o.seconds > 0.0) {
+            return Err(LabError::input(format!(
+                "--seconds must be positive, got {}",
+                o.seconds
+            )));
+        }
+        if o.sizes.is_empty() {
+            return Err(LabError::input("--sizes: give at least one size"));
+        }
+        for (i, &n) in o.sizes.iter().enumerate() {
+            if !(1..=MAX_SIZE).contains(&n) {
+                return Err(LabError::input(format!(
+                    "--sizes: {n} is not in 1..={}",
+                    format_count(MAX_SIZE as u64)
+                )));
+            }
+            if o.sizes[..i].contains(&n) {
+                return Err(LabError::input(format!("--sizes: {n} is repeated")));
+            }
+        }
+        let models = parse_list(
+            &o.models,
+            "--models",
+            "bond model",
+            BondModel::ALL,
+            BondModel::NAMES,
+        )?;
+        let cases = parse_list(
+            &o.cases,
+            "--cases",
+            "case",
+            ScaleCase::ALL,
+            ScaleCase::NAMES,
+        )?;
+        Ok(Self {
+            sizes: o.sizes.clone(),
+            models,
+            cases,
+            seconds: o.seconds,
+            steps: steps_of(o.seconds),
+        })
+    }
+
+    /// Every run, in the report's order.
+    fn runs(&self) -> impl Iterator<Item = (ScaleCase, BondModel, usize)> + '_ {
+        self.cases.iter().flat_map(move |&c| {
+            self.models
+                .iter()
+                .flat_map(move |&m| self.sizes.iter().map(move |&n| (c, m, n)))
+        })
+    }
+
+    /// The estimate of one run (building and stepping its world).
+    fn run_estimate(&self, case: ScaleCase, model: BondModel, n: usize) -> Estimate {
+        let fragments = bricks(grid_for(case, n)) as f64;
+        bodies_estimate(fragments, model) + run_estimate(fragments, model, self.steps)
+    }
+
+    /// All runs: the largest world's memory (one world at a time), every run's time; and
+    /// the joints model's share of the time.
+    fn estimate(&self) -> (Estimate, f64) {
+        let mut total = Estimate::default();
+        let mut joints = 0.0;
+        for (case, model, n) in self.runs() {
+            let e = self.run_estimate(case, model, n);
+            total.bytes = total.bytes.max(e.bytes);
+            total.seconds += e.seconds;
+            if model == BondModel::Joints {
+                joints += e.seconds;
+            }
+        }
+        (total.with_process(), joints)
+    }
+
+    /// The request in words, for the refusal.
+    fn describe(&self, joints_seconds: f64) -> String {
+        let runs = self.runs().count();
+        let largest = self.sizes.iter().max().copied().unwrap_or(0);
+        let mut what = format!(
+            "{runs} runs of {} steps (up to {} fragments)",
+            format_count(self.steps),
+            format_count(largest as u64)
+        );
+        if self.models.contains(&BondModel::Joints) {
+            what.push_str(&format!(
+                ", the joints model about {:.0} s of it (--models clusters leaves it out)",
+                joints_seconds
+            ));
+        }
+        what
+    }
+}
+
+/// CPU time of the calling thread in nanoseconds (Linux: `/proc/thread-self/schedstat`'s
+/// first field), `None` where it cannot be read.
+fn thread_cpu_ns() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    text.split_whitespace().next()?.parse().ok()
+}
+
+/// Fragments with a body in both lists whose pose is the same in both.
+fn unchanged(before: &[(u32, Pose)], after: &[(u32, Pose)]) -> usize {
+    let mut i = 0;
+    let mut count = 0;
+    for (f, pose) in after {
+        while i < before.len() && before[i].0 < *f {
+            i += 1;
+        }
+        if let Some((g, old)) = before.get(i)
+            && g == f
+            && old.translation == pose.translation
+            && old.rotation == pose.rotation
+        {
+            count += 1;
+        }
+    }
+    count
+}
+
+/// Builds and runs one world.
+fn measure(
+    config: &ScaleConfig,
+    case: ScaleCase,
+    model: BondModel,
+    n: usize,
+    ctx: &Context,
+) -> Result<ScaleRow, LabError> {
+    ctx.progress.check()?;
+    let t0 = Instant::now();
+    let (mut world, id) = worlds::build(case, n, model, config.seconds)?;
+    let build_ms = t0.elapsed().as_secs_f64() * 1e3;
+    world.start();
+    let steps = config.steps;
+    let (mut total, mut max) = (0.0f64, 0.0f64);
+    let mut before = if steps == 1 {
+        world.fragment_poses(id)
+    } else {
+        Vec::new()
+    };
+    let cpu_start = thread_cpu_ns();
+    world.run_steps(steps, &ctx.progress, |world, done| {
+        let ms = world.stats().last_step_ms;
+        total += ms;
+        max = max.max(ms);
+        if done + 1 == steps {
+            before = world.fragment_poses(id);
+        }
+        Ok::<(), LabError>(())
+    })?;
+    let cpu_mean_ms = cpu_start
+        .zip(thread_cpu_ns())
+        .map(|(a, b)| b.saturating_sub(a) as f64 / 1e6 / steps as f64);
+    let stats = world.stats();
+    Ok(ScaleRow {
+        case: case.name().to_string(),
+        model: model.name().to_string(),
+        requested: n,
+        grid: grid_for(case, n),
+        fragments: bricks(grid_for(case, n)),
+        steps,
+        build_ms,
+        mean_ms: total / steps as f64,
+        max_ms: max,
+        cpu_mean_ms,
+        bodies: stats.bodies,
+        still_fragments: unchanged(&before, &world.fragment_poses(id)),
+        diverged: stats.diverged,
+        bonds_broken: stats.bonds_broken,
+    })
+}
+
+/// Validates the options, checks the estimate against the context's limits, runs every
+/// case, model and size (a bar follows the steps unless `quiet`) and writes the plots
+/// into `options.out`.
+pub fn run(
+    options: &BenchScaleOptions,
+    ctx: &Context,
+    quiet: bool,
+) -> Result<BenchScaleReport, LabError> {
+    let config = ScaleConfig::new(options)?;
+    let (estimate, joints) = config.estimate();
+    ctx.check(&config.describe(joints), &estimate)?;
+    std::fs::create_dir_all(&options.out)
+        .input_err(format!("cannot create '{}'", options.out.display()))?;
+    let bar = ctx.follow("bench scale", &estimate, quiet);
+    let t0 = Instant::now();
+    let mut rows = Vec::new();
+    for (case, model, n) in config.runs() {
+        rows.push(measure(&config, case, model, n, ctx)?);
+    }
+    let measured_seconds = t0.elapsed().as_secs_f64();
+    drop(bar);
+    let plots = plot::write(&options.out, &rows, &config.cases, &ctx.progress)?;
+    Ok(BenchScaleReport {
+        seconds: config.seconds,
+        steps: config.steps,
+        estimated_seconds: estimate.seconds,
+        measured_seconds,
+        rows,
+        plots,
+    })
+}
+
+#[cfg(test)]
+mod tests;
