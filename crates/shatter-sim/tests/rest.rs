@@ -34,3 +34,23 @@ fn the_same_block_dropped_from_twenty_metres_breaks() {
     }
     assert!(world.stats().bonds_broken > 0, "{:?}", world.stats());
 }
+
+#[test]
+fn a_block_at_rest_on_the_ground_falls_asleep_and_a_falling_one_is_awake() {
+    use shatter_sim::testing::box_grid_fracture;
+    use shatter_sim::{ObjectSpec, World, WorldSettings};
+    let mut world = World::new(WorldSettings::default());
+    let block = box_grid_fracture([1, 1, 1], [0.5, 0.5, 0.5].into());
+    world
+        .add_object(ObjectSpec::from_fracture(block, [0.0, 2.0, 0.0].into()))
+        .unwrap();
+    world.start();
+    for _ in 0..10 {
+        world.step();
+    }
+    assert_eq!(world.stats().sleeping_bodies, 0, "falling");
+    for _ in 0..600 {
+        world.step();
+    }
+    assert_eq!(world.stats().sleeping_bodies, 1, "{:?}", world.stats());
+}

@@ -63,7 +63,7 @@ pub fn run(args: &BenchScaleArgs, ctx: &Context) -> Result<BenchScaleReport, Cli
         report.steps, report.seconds, report.measured_seconds, report.estimated_seconds
     );
     println!(
-        "{:<9} {:<8} {:>9} {:>14} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:>8} {:>7}",
+        "{:<9} {:<8} {:>9} {:>14} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>8} {:>7}",
         "case",
         "model",
         "fragments",
@@ -73,13 +73,14 @@ pub fn run(args: &BenchScaleArgs, ctx: &Context) -> Result<BenchScaleReport, Cli
         "max ms",
         "cpu ms",
         "bodies",
+        "asleep",
         "still",
         "diverged",
         "broken"
     );
     for r in &report.rows {
         println!(
-            "{:<9} {:<8} {:>9} {:>14} {:>9.1} {:>9.3} {:>9.3} {:>9} {:>7} {:>7} {:>8} {:>7}",
+            "{:<9} {:<8} {:>9} {:>14} {:>9.1} {:>9.3} {:>9.3} {:>9} {:>7} {:>7} {:>7} {:>8} {:>7}",
             r.case,
             r.model,
             r.fragments,
@@ -89,13 +90,16 @@ pub fn run(args: &BenchScaleArgs, ctx: &Context) -> Result<BenchScaleReport, Cli
             r.max_ms,
             cpu(r.cpu_mean_ms),
             r.bodies,
+            r.sleeping_bodies,
             r.still_fragments,
             r.diverged,
             r.bonds_broken
         );
     }
     println!("ms: wall clock per step; cpu ms: the stepping thread's CPU per step over the run");
-    println!("still: fragments whose pose did not change over the last step (sleeping or fixed)");
+    println!(
+        "asleep: dynamic bodies Rapier put to sleep; still: fragments whose pose did not change over the last step (sleeping or fixed)"
+    );
     for p in &report.plots {
         println!("wrote {}", p.display());
     }

@@ -59,6 +59,8 @@ pub struct Stats {
     pub bodies: usize,
     /// Fragments with a body.
     pub fragments: usize,
+    /// Dynamic bodies Rapier has put to sleep (at rest, not simulated until woken).
+    pub sleeping_bodies: usize,
     /// Bonds of all objects.
     pub bonds_total: usize,
     /// Broken bonds since start (never decreases during a run: bonds of objects that

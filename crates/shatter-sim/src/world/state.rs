@@ -467,6 +467,12 @@ impl World {
         self.stats.bonds_broken_by_damage = by[2];
         let ground = usize::from(self.ground.is_some());
         self.stats.bodies = self.physics.bodies.len().saturating_sub(ground);
+        self.stats.sleeping_bodies = self
+            .physics
+            .bodies
+            .iter()
+            .filter(|(_, rb)| rb.is_dynamic() && rb.is_sleeping())
+            .count();
         self.stats.fragments = fragments;
         self.stats.bonds_total = bonds_total;
         self.stats.bonds_broken = bonds_broken;

@@ -4,10 +4,10 @@
 //! simulated seconds. Per run: milliseconds per step (mean and worst), bodies, fragments
 //! at rest and diverged bodies; and a plot of ms/step against fragments.
 //!
-//! Sleeping bodies: `shatter_sim::World` does not say which of its Rapier bodies sleep.
-//! What its public API shows is each fragment's pose, so a run counts the fragments
-//! whose pose did not change at all over its last step ([`ScaleRow::still_fragments`]):
-//! those on sleeping bodies, and on fixed ones (an intact anchored cluster).
+//! At rest: the dynamic bodies Rapier put to sleep ([`ScaleRow::sleeping_bodies`], from
+//! `Stats::sleeping_bodies`), and the fragments whose pose did not change at all over
+//! the last step ([`ScaleRow::still_fragments`]: on sleeping bodies, and on fixed ones
+//! such as an intact anchored cluster).
 
 mod plot;
 mod worlds;
@@ -74,8 +74,10 @@ pub struct ScaleRow {
     pub cpu_mean_ms: Option<f64>,
     /// Rigid bodies at the end (fragments' bodies and projectiles; not the ground).
     pub bodies: usize,
+    /// Dynamic bodies asleep at the end.
+    pub sleeping_bodies: usize,
     /// Fragments whose pose did not change over the last step: on sleeping bodies or
-    /// fixed ones (the world does not expose Rapier's sleeping flag).
+    /// fixed ones.
     pub still_fragments: usize,
     /// Bodies removed because their state diverged.
     pub diverged: usize,
@@ -277,6 +279,7 @@ fn measure(
         max_ms: max,
         cpu_mean_ms,
         bodies: stats.bodies,
+        sleeping_bodies: stats.sleeping_bodies,
         still_fragments: unchanged(&before, &world.fragment_poses(id)),
         diverged: stats.diverged,
         bonds_broken: stats.bonds_broken,
