@@ -45,24 +45,39 @@ pub(crate) struct PendingCut {
     pub job: CutJob,
 }
 
+/// What a cut computes: [`runtime::cut_at`] of these.
+pub(crate) struct CutInput {
+    model: shatter_geom::model::Model,
+    impact: DVec3,
+    pieces: u32,
+    seed: u64,
+}
+
+impl CutInput {
+    fn run(self) -> Result<Fracture, FractureError> {
+        runtime::cut_at(&self.model, self.impact, self.pieces, self.seed)
+    }
+}
+
 /// The cut's computation.
 pub(crate) enum CutJob {
     #[cfg(not(target_arch = "wasm32"))]
     Thread(std::thread::JoinHandle<Result<Fracture, FractureError>>),
-    /// Not started yet (no threads): run when due.
+    /// Not started yet (no threads): run when due. (Plain data, not a closure: the world
+    /// is shared between threads, as a Bevy resource is.)
     #[cfg(target_arch = "wasm32")]
-    Later(Box<dyn FnOnce() -> Result<Fracture, FractureError> + Send>),
+    Later(Box<CutInput>),
 }
 
 impl CutJob {
-    fn start(run: impl FnOnce() -> Result<Fracture, FractureError> + Send + 'static) -> CutJob {
+    fn start(input: CutInput) -> CutJob {
         #[cfg(not(target_arch = "wasm32"))]
         {
-            CutJob::Thread(std::thread::spawn(run))
+            CutJob::Thread(std::thread::spawn(move || input.run()))
         }
         #[cfg(target_arch = "wasm32")]
         {
-            CutJob::Later(Box::new(run))
+            CutJob::Later(Box::new(input))
         }
     }
 
@@ -74,7 +89,7 @@ impl CutJob {
                 Err(_) => Err("the cut's thread panicked".to_string()),
             },
             #[cfg(target_arch = "wasm32")]
-            CutJob::Later(run) => run().map_err(|e| e.to_string()),
+            CutJob::Later(input) => input.run().map_err(|e| e.to_string()),
         }
     }
 }
@@ -199,7 +214,12 @@ impl World {
             shatter_geom::budget::Estimate::voronoi_fracture(u64::from(pieces), triangles);
         let lag = 1 + (estimate.seconds / f64::from(self.settings.dt)).floor() as u64;
         let impact = request.impact;
-        let job = CutJob::start(move || runtime::cut_at(&model, impact, pieces, seed));
+        let job = CutJob::start(CutInput {
+            model,
+            impact,
+            pieces,
+            seed,
+        });
         let (force, impulse, other_mass) = request.hit.unwrap_or((0.0, Vec3::ZERO, 0.0));
         let _ = request.body;
         self.cuts.push(PendingCut {

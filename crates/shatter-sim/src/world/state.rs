@@ -134,6 +134,13 @@ pub struct World {
     pub(crate) cuts: Vec<PendingCut>,
 }
 
+// A world is shared between threads (a Bevy resource, a game's system): on every target,
+// the web included, where a runtime cut waits as plain data.
+const _: fn() = || {
+    fn shared<T: Send + Sync>() {}
+    shared::<World>();
+};
+
 impl World {
     /// An empty world (with a ground if the settings ask for one).
     pub fn new(settings: WorldSettings) -> World {

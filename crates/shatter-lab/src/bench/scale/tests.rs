@@ -138,7 +138,10 @@ fn the_anchored_wall_rests_and_the_falling_block_does_not() {
     for model in ["clusters", "joints"] {
         let block = row("landing", model, 64, 0.1);
         assert_eq!(block.still_fragments, 0, "{model}");
-        assert_eq!(block.sleeping_bodies, 0, "a falling block is awake ({model})");
+        assert_eq!(
+            block.sleeping_bodies, 0,
+            "a falling block is awake ({model})"
+        );
         assert_eq!(block.bonds_broken, 0, "{model}");
     }
 }
