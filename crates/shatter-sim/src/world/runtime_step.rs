@@ -54,6 +54,17 @@ pub(crate) struct CutInput {
 }
 
 impl CutInput {
+    /// The cut of `record`'s fragment `fragment` at `impact`: its model, the pieces of
+    /// its level ([`runtime::pieces_at`]) and the seed of its line.
+    fn of(record: &ObjectRecord, fragment: u32, impact: DVec3) -> CutInput {
+        CutInput {
+            model: runtime::fragment_model(&record.prepared.fracture, fragment as usize),
+            impact,
+            pieces: runtime::pieces_at(record.cut_pieces, record.level),
+            seed: cut_seed(record.cut_seed, fragment, record.level),
+        }
+    }
+
     fn run(self) -> Result<Fracture, FractureError> {
         runtime::cut_at(&self.model, self.impact, self.pieces, self.seed)
     }
@@ -108,9 +119,9 @@ impl std::fmt::Debug for PendingCut {
 struct CutRequest {
     object: ObjectId,
     fragment: u32,
-    body: RigidBodyHandle,
     impact: DVec3,
-    hit: Option<(f32, Vec3, f32)>,
+    /// The hit's force, impulse on the fragment and the other body's mass.
+    hit: (f32, Vec3, f32),
 }
 
 impl World {
@@ -179,25 +190,11 @@ impl World {
             Some(p) => rb.position().inverse_transform_point(p).as_dvec3(),
             None => fragment.centroid,
         };
-        let other = if sign > 0.0 {
-            hit.collider1
-        } else {
-            hit.collider2
-        };
-        let other_mass = self
-            .physics
-            .colliders
-            .get(other)
-            .and_then(|c| c.parent())
-            .and_then(|b| self.physics.bodies.get(b))
-            .filter(|rb| rb.is_dynamic())
-            .map_or(0.0, |rb| rb.mass());
         Some(CutRequest {
             object: id,
             fragment: f,
-            body,
             impact,
-            hit: Some((hit.force, impulse, other_mass)),
+            hit: (hit.force, impulse, hit.other_mass(&self.physics, sign)),
         })
     }
 
@@ -205,27 +202,17 @@ impl World {
         let Some(record) = self.objects.get(&request.object) else {
             return;
         };
-        let f = request.fragment as usize;
-        let model = runtime::fragment_model(&record.prepared.fracture, f);
-        let pieces = runtime::pieces_at(record.cut_pieces, record.level);
-        let seed = cut_seed(record.cut_seed, request.fragment, record.level);
-        let triangles = model.mesh.triangles.len() as u64;
+        let input = CutInput::of(record, request.fragment, request.impact);
+        let triangles = input.model.mesh.triangles.len() as u64;
         let estimate =
-            shatter_geom::budget::Estimate::voronoi_fracture(u64::from(pieces), triangles);
+            shatter_geom::budget::Estimate::voronoi_fracture(u64::from(input.pieces), triangles);
         let lag = 1 + (estimate.seconds / f64::from(self.settings.dt)).floor() as u64;
-        let impact = request.impact;
-        let job = CutJob::start(CutInput {
-            model,
-            impact,
-            pieces,
-            seed,
-        });
-        let (force, impulse, other_mass) = request.hit.unwrap_or((0.0, Vec3::ZERO, 0.0));
-        let _ = request.body;
+        let job = CutJob::start(input);
+        let (force, impulse, other_mass) = request.hit;
         self.cuts.push(PendingCut {
             object: request.object,
             fragment: request.fragment,
-            impact,
+            impact: request.impact,
             force,
             impulse,
             other_mass,
@@ -326,15 +313,13 @@ impl World {
             .get(body)
             .ok_or_else(|| SimError::invalid(&key, "the fragment's body is gone"))?;
         let impact = rb.position().inverse_transform_point(point).as_dvec3();
-        let f = fragment as usize;
-        let model = runtime::fragment_model(&record.prepared.fracture, f);
-        let pieces = runtime::pieces_at(record.cut_pieces, record.level);
-        let seed = cut_seed(record.cut_seed, fragment, record.level);
         let fracture =
-            runtime::cut_at(&model, impact, pieces, seed).map_err(|e| SimError::Fracture {
-                key: key.clone(),
-                reason: e.to_string(),
-            })?;
+            CutInput::of(record, fragment, impact)
+                .run()
+                .map_err(|e| SimError::Fracture {
+                    key: key.clone(),
+                    reason: e.to_string(),
+                })?;
         let child = self
             .replace_fragment(id, fragment, fracture, impact, None)
             .map_err(|reason| SimError::Fracture { key, reason })?;

@@ -28,6 +28,25 @@ pub(crate) struct ContactHit {
     pub point: Option<Vec3>,
 }
 
+impl ContactHit {
+    /// The mass of the body on the other side from the one `sign` names (`+1`: the hit
+    /// seen from `collider2`, so the other is `collider1`); 0 when it is not dynamic.
+    pub(crate) fn other_mass(&self, physics: &PhysicsWorld, sign: f32) -> f32 {
+        let other = if sign > 0.0 {
+            self.collider1
+        } else {
+            self.collider2
+        };
+        physics
+            .colliders
+            .get(other)
+            .and_then(|c| c.parent())
+            .and_then(|b| physics.bodies.get(b))
+            .filter(|rb| rb.is_dynamic())
+            .map_or(0.0, |rb| rb.mass())
+    }
+}
+
 /// Collects Rapier's contact-force events during a step.
 #[derive(Default)]
 struct HitCollector(Mutex<Vec<ContactHit>>);
@@ -171,19 +190,7 @@ impl World {
                 if live.model != BondModel::Clusters {
                     continue;
                 }
-                let other = if sign > 0.0 {
-                    hit.collider1
-                } else {
-                    hit.collider2
-                };
-                let other_mass = self
-                    .physics
-                    .colliders
-                    .get(other)
-                    .and_then(|c| c.parent())
-                    .and_then(|b| self.physics.bodies.get(b))
-                    .filter(|rb| rb.is_dynamic())
-                    .map_or(0.0, |rb| rb.mass());
+                let other_mass = hit.other_mass(&self.physics, sign);
                 let factor = co
                     .parent()
                     .and_then(|b| relief.get(&b.into_raw_parts()).copied())
