@@ -13,20 +13,12 @@ use errors::split;
 use std::path::Path;
 
 use serde_json::{Value, json};
-use shatter_geom::fracture::{Fracture, FractureParams, Method, Pattern, fracture, fracture_model};
+use shatter_geom::fracture::{Fracture, FractureParams, fracture, fracture_model};
 use shatter_geom::io::{self, BreakThresholds, ExportObject, FractureAssetMeta, MeshIoError};
 use shatter_geom::{DVec3, shapes};
 
 fn voronoi(pieces: usize, seed: u64) -> FractureParams {
-    FractureParams {
-        method: Method::Voronoi {
-            pieces,
-            pattern: Pattern::Uniform,
-            impact: None,
-            seeds: None,
-        },
-        seed,
-    }
+    FractureParams::voronoi(pieces, seed)
 }
 
 fn bird(pieces: usize) -> Fracture {

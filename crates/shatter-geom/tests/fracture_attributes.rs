@@ -7,21 +7,13 @@ use std::path::Path;
 
 use proptest::prelude::*;
 use shatter_geom::fracture::{
-    Fracture, FractureParams, Method, Pattern, Placement, fracture, fracture_model,
+    Fracture, FractureParams, Method, Placement, fracture, fracture_model,
 };
 use shatter_geom::model::Model;
 use shatter_geom::{DVec3, TriMesh, io, shapes};
 
 fn voronoi(pieces: usize, seed: u64) -> FractureParams {
-    FractureParams {
-        method: Method::Voronoi {
-            pieces,
-            pattern: Pattern::Uniform,
-            impact: None,
-            seeds: None,
-        },
-        seed,
-    }
+    FractureParams::voronoi(pieces, seed)
 }
 
 fn slice(pieces: usize, seed: u64) -> FractureParams {

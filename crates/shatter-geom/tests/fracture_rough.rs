@@ -13,8 +13,7 @@ use std::collections::HashSet;
 
 use shapes::{assert_closed_outward, diag, winding};
 use shatter_geom::fracture::{
-    Fracture, FractureParams, Method, Pattern, RoughReport, Roughness, fracture, fracture_model,
-    roughen,
+    Fracture, FractureParams, Method, RoughReport, Roughness, fracture, fracture_model, roughen,
 };
 use shatter_geom::model::Model;
 use shatter_geom::{DVec3, TriMesh, shapes as builtin};
@@ -28,15 +27,7 @@ fn meshes() -> Vec<(&'static str, TriMesh, usize)> {
 }
 
 fn params(pieces: usize, seed: u64) -> FractureParams {
-    FractureParams {
-        method: Method::Voronoi {
-            pieces,
-            pattern: Pattern::Uniform,
-            impact: None,
-            seeds: None,
-        },
-        seed,
-    }
+    FractureParams::voronoi(pieces, seed)
 }
 
 /// Stone's roughness scaled to the mesh (its presets are for objects about 1 m across;

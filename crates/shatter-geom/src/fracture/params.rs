@@ -132,6 +132,28 @@ pub struct FractureParams {
     pub seed: u64,
 }
 
+impl FractureParams {
+    /// `pieces` Voronoi cells from uniform random seeds.
+    ///
+    /// ```
+    /// use shatter_geom::fracture::{FractureParams, Method, Pattern};
+    /// let p = FractureParams::voronoi(8, 3);
+    /// assert!(matches!(p.method, Method::Voronoi { pieces: 8, pattern: Pattern::Uniform, .. }));
+    /// assert_eq!(p.seed, 3);
+    /// ```
+    pub fn voronoi(pieces: usize, seed: u64) -> FractureParams {
+        FractureParams {
+            method: Method::Voronoi {
+                pieces,
+                pattern: Pattern::Uniform,
+                impact: None,
+                seeds: None,
+            },
+            seed,
+        }
+    }
+}
+
 /// Why a mesh cannot be fractured.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FractureError {

@@ -137,18 +137,7 @@ pub fn fragment_model(fracture: &Fracture, f: usize) -> Model {
 /// An intact object: `model` as a single fragment, with its convex pieces and mass
 /// properties (a one-cell Voronoi fracture, so a concave model gets exact convex pieces).
 pub fn whole(model: &Model) -> Result<Fracture, FractureError> {
-    geom::fracture_model(
-        model,
-        &geom::FractureParams {
-            method: geom::Method::Voronoi {
-                pieces: 1,
-                pattern: geom::Pattern::Uniform,
-                impact: None,
-                seeds: None,
-            },
-            seed: 0,
-        },
-    )
+    geom::fracture_model(model, &geom::FractureParams::voronoi(1, 0))
 }
 
 /// Cuts `model` into `pieces` radial Voronoi cells around `impact` (in the model's

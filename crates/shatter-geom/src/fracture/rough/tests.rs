@@ -2,19 +2,11 @@
 //! `tests/fracture_rough.rs`).
 
 use super::*;
-use crate::fracture::{FractureParams, Method, Pattern, fracture};
+use crate::fracture::{FractureParams, Method, fracture};
 use crate::shapes;
 
 fn voronoi(pieces: usize, seed: u64) -> FractureParams {
-    FractureParams {
-        method: Method::Voronoi {
-            pieces,
-            pattern: Pattern::Uniform,
-            impact: None,
-            seeds: None,
-        },
-        seed,
-    }
+    FractureParams::voronoi(pieces, seed)
 }
 
 #[test]
