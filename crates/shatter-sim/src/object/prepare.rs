@@ -98,17 +98,8 @@ fn local_roughness(spec: &ObjectSpec) -> Roughness {
         amplitude: r.amplitude / mean,
         frequency: r.frequency * mean,
         // The object's own seed, so two objects of one material differ.
-        seed: r.seed ^ spec_seed(spec),
+        seed: r.seed ^ spec.source.params().map_or(0, |p| p.seed),
         ..r
-    }
-}
-
-fn spec_seed(spec: &ObjectSpec) -> u64 {
-    match &spec.source {
-        FractureSource::Shape { params, .. } | FractureSource::MeshFile { params, .. } => {
-            params.seed
-        }
-        FractureSource::Prebuilt(_) => 0,
     }
 }
 

@@ -97,6 +97,18 @@ pub enum FractureSource {
     },
 }
 
+impl FractureSource {
+    /// The fracture parameters of a shape or a mesh file (`None` for a prebuilt fracture).
+    pub fn params(&self) -> Option<&FractureParams> {
+        match self {
+            FractureSource::Shape { params, .. } | FractureSource::MeshFile { params, .. } => {
+                Some(params)
+            }
+            FractureSource::Prebuilt(_) => None,
+        }
+    }
+}
+
 /// A breakable object: a fracture, a material, a transform and the thesis's parameters.
 #[derive(Debug, Clone)]
 pub struct ObjectSpec {

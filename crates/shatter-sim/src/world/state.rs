@@ -12,9 +12,7 @@ use crate::bonds::tags::{Kind, tag};
 use crate::bonds::{clusters, joints};
 use crate::error::SimError;
 use crate::object::prepare::{prepare, resolve_fracture};
-use crate::object::{
-    BondModel, ExplosionSpec, FractureSource, ObjectSpec, Prepared, ProjectileSpec,
-};
+use crate::object::{BondModel, ExplosionSpec, ObjectSpec, Prepared, ProjectileSpec};
 use crate::runtime::FractureTiming;
 use crate::world::runtime_step::PendingCut;
 use crate::world::settings::{SimEvent, Stats, WorldSettings};
@@ -55,15 +53,9 @@ pub(crate) struct ObjectRecord {
 impl ObjectRecord {
     /// The record of an object the user added.
     fn added(spec: ObjectSpec, prepared: Arc<Prepared>) -> ObjectRecord {
-        let (cut_pieces, cut_seed) = match &spec.source {
-            FractureSource::Shape { params, .. } | FractureSource::MeshFile { params, .. } => {
-                (params.pieces, params.seed)
-            }
-            FractureSource::Prebuilt(_) => {
-                let d = crate::object::FractureParams::default();
-                (d.pieces, d.seed)
-            }
-        };
+        let default = crate::object::FractureParams::default();
+        let params = spec.source.params().unwrap_or(&default);
+        let (cut_pieces, cut_seed) = (params.pieces, params.seed);
         let level = u32::from(spec.runtime.timing != FractureTiming::OnImpact);
         ObjectRecord {
             spec,
