@@ -251,26 +251,3 @@ def spread(fragments):
 def identity():
     return Matrix.Identity(4)
 
-
-def shatter_obj_open_fragments(path):
-    """Indices of the fragments in shatter's own OBJ output that are not closed
-    2-manifolds (a directed edge used other than once, or without its reverse once)."""
-    from collections import Counter
-    bad, edges, current = set(), None, None
-
-    def finish():
-        if current is not None and any(
-                n != 1 or edges.get((b, a), 0) != 1 for (a, b), n in edges.items()):
-            bad.add(current)
-
-    with open(path) as f:
-        for line in f:
-            if line.startswith("o "):
-                finish()
-                current, edges = int(line.split()[1].split("_")[-1]), Counter()
-            elif line.startswith("f "):
-                idx = [int(c.split("/")[0]) for c in line.split()[1:]]
-                for a, b in zip(idx, idx[1:] + idx[:1]):
-                    edges[(a, b)] += 1
-    finish()
-    return bad

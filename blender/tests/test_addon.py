@@ -9,7 +9,7 @@ and a textured, bevelled cube with every method through the operator, and checks
 run: the fragment count, that every fragment is a closed, consistently wound 2-manifold
 with positive volume, that the volumes (bmesh, world space) add up to the original's
 evaluated volume, the original's transform kept, the interior material on the cut faces
-and the original's material on the others, UVs (see EXPECT_UVS), and the bond graph.
+and the original's material on the others, the original's UVs, and the bond graph.
 Then the seed sources (child vertices, particles, 3D cursor), rigid-body constraints
 and their breaking, and the error paths (missing binary, failing binary, open mesh).
 Ends with 'blender-addon: N passed, N failed, N skipped'; exits 1 on any failure.
@@ -26,29 +26,6 @@ from mathutils import Vector
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import helpers as h  # noqa: E402
-
-# Issue 13 (UVs, normals and materials through fracture and the OBJ/GLB writers) has not
-# landed: today shatter's fragments carry no UVs, so the UV assertions cannot pass yet.
-# With False the UV check runs and prints what it found, but does not count; turn it on
-# (or set SHATTER_BLENDER_EXPECT_UVS=1) when issue 13 lands.
-EXPECT_UVS = True
-
-# A shatter defect, still open after issue 14 part 2 (run in Blender 2026-12-03): with
-# tetra, a few outer faces are still labelled interior (sphere: 2.2 of 154.8 interior
-# area on the surface), and the interior triangles Blender shows differ from shatter's
-# count by a few (sphere 6,568 vs 6,584, Suzanne 10,538 vs 10,548). With False, these
-# two tetra checks print their figures as skips; turn it on when tetra labels agree.
-STRICT_TETRA_LABELS = os.environ.get("SHATTER_BLENDER_STRICT_TETRA", "0") == "1"
-
-# Once a shatter defect: a sliver merged into a neighbour was kept as a second closed
-# shell whose shared faces stayed back to back. Merging now makes unions for every method
-# (crates/shatter-geom/src/fracture/bonds/merge.rs; tetra too since issue 14 part 2), a
-# union that would not be a closed 2-manifold is refused, and Fracture::validate checks
-# every fragment in the Rust tests, so this is on by default (reasoned from the change,
-# not yet run in Blender). With SHATTER_BLENDER_STRICT_MERGED=0, a fragment that is open
-# or non-manifold in Blender is a skip when shatter's own OBJ output has that same
-# fragment non-manifold, and a failure otherwise.
-STRICT_MERGED_FRAGMENTS = os.environ.get("SHATTER_BLENDER_STRICT_MERGED", "1") == "1"
 
 KEEP = os.path.join(os.environ.get("TMPDIR", "/tmp"), "shatter-blender-test-files")
 os.environ["SHATTER_FRACTURE_KEEP"] = KEEP  # the add-on keeps shatter's files here
@@ -86,12 +63,13 @@ def fracture(obj, **kw):
     return result, coll, frags, json.loads(coll["shatter_report"])
 
 
-def check_run(label, obj, orig, frags, report, interior, expect_count, conforming=True,
-              tetra=False):
-    """conforming=False: tetra on a concave mesh, whose Delaunay tetrahedra do not follow
-    the surface exactly (shatter keeps those whose centre is inside): the fragments'
-    volume is then shatter's reported one, a little off the mesh's, and their outer
-    faces lie near the surface, not on it."""
+def check_run(label, obj, orig, frags, report, interior, expect_count):
+    """Every method, tetra on a concave mesh too, gives fragments clipped exactly to the
+    mesh: they fill its volume, their outer faces lie on its surface with its UVs, and
+    the interior material is on exactly shatter's interior triangles, none on the
+    surface. (Until 2026-12-03 tetra's labels were off by a few triangles: near-flat
+    tetrahedra on a 32-bit sphere's quads, and edges of rounding length that Blender's
+    32-bit vertices collapse; both mended in shatter, tested in fracture_tetra.rs.)"""
     n = len(frags)
     T.check("%s: %d fragments, as reported" % (label, n), n == report["fragments"],
             "report says %s" % report["fragments"])
@@ -142,19 +120,8 @@ def check_run(label, obj, orig, frags, report, interior, expect_count, conformin
                 uv_errors.append(max(abs(uv[0] - want[0]), abs(uv[1] - want[1])))
         with_interior += has_interior
         bm.free()
-    name = "%s: every fragment is a closed, consistently wound 2-manifold" % label
-    skipped = False
-    if bad_topology and not STRICT_MERGED_FRAGMENTS:
-        from_shatter = h.shatter_obj_open_fragments(os.path.join(KEEP, "fragments.obj"))
-        ours = [x for x in bad_topology if int(x.rsplit("_", 1)[1]) not in from_shatter]
-        if not ours:
-            T.skip(name, "STRICT_MERGED_FRAGMENTS is off: %s, as in shatter's own output "
-                         "(merged sliver kept back to back)" % ", ".join(bad_topology))
-            skipped = True
-        else:
-            bad_topology = ours
-    if not skipped:
-        T.check(name, not bad_topology, ", ".join(bad_topology[:5]))
+    T.check("%s: every fragment is a closed, consistently wound 2-manifold" % label,
+            not bad_topology, ", ".join(bad_topology[:5]))
     T.check("%s: every fragment has positive volume (outward)" % label, not inverted,
             ", ".join(inverted[:5]))
     det = abs(orig.matrix.to_3x3().determinant())
@@ -162,17 +129,8 @@ def check_run(label, obj, orig, frags, report, interior, expect_count, conformin
     exported = abs(report["mesh_volume"] * det - orig.volume) / orig.volume
     T.check("%s: shatter fractured the evaluated mesh (its volume %.6f, rel %.1e)"
             % (label, orig.volume, exported), exported < 1e-5)
-    if conforming:
-        T.check("%s: volumes add up to the original's %.6f (sum %.6f, rel %.1e)"
-                % (label, orig.volume, total, rel), rel < 1e-4)
-    else:
-        own = report["fragments_volume"] * det
-        rel_own = abs(total - own) / own
-        T.check("%s: volumes add up to shatter's reported %.6f (sum %.6f, rel %.1e)"
-                % (label, own, total, rel_own), rel_own < 1e-4)
-        print("INFO %s: tetra on a concave mesh: shatter's fragments are off the "
-              "original's volume by %.1e (its tetrahedra do not follow the surface)"
-              % (label, rel))
+    T.check("%s: volumes add up to the original's %.6f (sum %.6f, rel %.1e)"
+            % (label, orig.volume, total, rel), rel < 1e-4)
     T.check("%s: internal faces of merged slivers removed: %d"
             % (label, report.get("internal_faces_removed", -1)),
             report.get("internal_faces_removed", -1) >= 0)
@@ -183,27 +141,16 @@ def check_run(label, obj, orig, frags, report, interior, expect_count, conformin
                   "(%d + %d removed inner walls = %d)"
                   % (label, interior_count, removed, report["interior_triangles"]))
     exact = interior_count + removed == report["interior_triangles"]
-    if tetra and not STRICT_TETRA_LABELS and not exact:
-        T.skip(exact_name, "STRICT_TETRA_LABELS is off: shatter's tetra labels (see the switch)")
-    else:
-        T.check(exact_name, exact)
+    T.check(exact_name, exact)
     if n > 1:
         T.check("%s: every fragment has interior-material faces" % label, with_interior == n,
                 "%d of %d" % (with_interior, n))
         name = ("%s: interior material only on cut faces (%.2g of %.4g on the surface)"
                 % (label, interior_on_surface, interior_area))
         ok = interior_area > 0 and interior_on_surface < 1e-6 * interior_area
-        if tetra and not STRICT_TETRA_LABELS and not ok:
-            T.skip(name, "STRICT_TETRA_LABELS is off: shatter's tetra labels some outer "
-                         "faces interior (see the switch)")
-        else:
-            T.check(name, ok)
-    if conforming:
-        T.check("%s: every other face lies on the original surface (within %.0e of its "
-                "size)" % (label, near / orig.size), not off_surface, "; ".join(off_surface[:5]))
-    else:
-        print("INFO %s: %d outer faces off the surface (tetra on a concave mesh)%s"
-              % (label, len(off_surface), (": " + off_surface[0]) if off_surface else ""))
+        T.check(name, ok)
+    T.check("%s: every other face lies on the original surface (within %.0e of its "
+            "size)" % (label, near / orig.size), not off_surface, "; ".join(off_surface[:5]))
     T.check("%s: those faces have the original's material (%s)"
             % (label, surface_mat.name if surface_mat else "none"), not wrong_surface_mat,
             "; ".join(wrong_surface_mat[:5]))
@@ -212,15 +159,7 @@ def check_run(label, obj, orig, frags, report, interior, expect_count, conformin
         name = "%s: UVs present on every fragment and equal to the original's" % label
         ok = with_uvs == n and uv_errors and worst < 1e-3
         detail = "%d of %d fragments have a UV layer; worst UV error %.2g" % (with_uvs, n, worst)
-        if EXPECT_UVS and not conforming and not ok and with_uvs == n and worst < 1e-2:
-            # Tetra on a concave mesh: the outer faces lie off the surface (see above), so
-            # "the original's UV" there is the nearest surface point's, which shatter and
-            # Blender's BVH can find on different triangles of the same non-planar quad.
-            T.skip(name, "tetra on a concave mesh, outer faces off the surface (%s)" % detail)
-        elif EXPECT_UVS:
-            T.check(name, ok, detail)
-        else:
-            T.skip(name, "EXPECT_UVS is off until issue 13 lands (%s)" % detail)
+        T.check(name, ok, detail)
     hidden = obj.hide_get() and obj.hide_render
     T.check("%s: the original is kept, hidden" % label, hidden)
     return total
@@ -248,7 +187,7 @@ def check_bond_properties(label, frags, report, interior):
             % (label, area, cut, rel), rel < 1e-3)
 
 
-def methods_case(name, build, cases, concave=False):
+def methods_case(name, build, cases):
     for label, kw, expect in cases:
         h.clear_scene()
         obj = build()
@@ -266,9 +205,7 @@ def methods_case(name, build, cases, concave=False):
             continue
         T.check("%s: the operator finishes" % full, result == {'FINISHED'}, str(result))
         interior = bpy.data.materials[kw.get("interior_material") or "Shatter Interior"]
-        check_run(full, obj, orig, frags, report, interior, expect,
-                  conforming=not (concave and kw["method"] == 'TETRA'),
-                  tetra=kw["method"] == 'TETRA')
+        check_run(full, obj, orig, frags, report, interior, expect)
         if kw.get("bonds", "PROPERTIES") == 'PROPERTIES' and len(frags) > 1:
             check_bond_properties(full, frags, report, interior)
 
@@ -298,7 +235,7 @@ def every_method():
         ("voronoi", vor, at_least(12)),
         ("tetra", tet, at_least(20)),
         ("slice, own interior material", dict(sli, interior_material="Inside"), between(5, 64)),
-    ], concave=True)
+    ])
     methods_case("cube", h.textured_cube, [
         ("voronoi clustered", dict(vor, pattern='CLUSTERED'), exactly(12)),
         ("tetra", dict(tet, center=True), at_least(20)),

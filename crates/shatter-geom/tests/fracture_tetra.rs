@@ -6,6 +6,7 @@
 #[path = "fracture_shapes.rs"]
 mod shapes;
 
+use glam::{DQuat, DVec3, EulerRot};
 use shapes::*;
 use shatter_geom::delaunay::tetrahedralize;
 use shatter_geom::fracture::{
@@ -218,4 +219,125 @@ fn collision_pieces_of_merged_groups_stay_inside_their_fragment() {
         covered > 0.99,
         "pieces cover the cube but its slivers: {covered}"
     );
+}
+
+/// Blender's UV sphere (16 segments, 8 rings: triangle fans at the poles, quads split
+/// on one diagonal) moved, turned and stretched, then rounded to `f32` as an exported
+/// file is: its quads are planar only to rounding.
+fn exported_uv_sphere() -> TriMesh {
+    let (seg, rings) = (16u32, 8u32);
+    let rot = DQuat::from_euler(EulerRot::XYZ, 0.3, 0.2, 0.9);
+    let place = |p: DVec3| {
+        let q = rot * (p * DVec3::new(1.2, 0.8, 1.0)) + DVec3::new(1.0, -2.0, 0.5);
+        DVec3::new(q.x as f32 as f64, q.y as f32 as f64, q.z as f32 as f64)
+    };
+    let mut pos = vec![place(DVec3::Z)];
+    for r in 1..rings {
+        let th = std::f64::consts::PI * r as f64 / rings as f64;
+        for s in 0..seg {
+            let ph = std::f64::consts::TAU * s as f64 / seg as f64;
+            pos.push(place(DVec3::new(
+                th.sin() * ph.cos(),
+                th.sin() * ph.sin(),
+                th.cos(),
+            )));
+        }
+    }
+    pos.push(place(-DVec3::Z));
+    let ring = |r: u32, s: u32| 1 + (r - 1) * seg + s % seg;
+    let south = pos.len() as u32 - 1;
+    let mut tris = Vec::new();
+    for s in 0..seg {
+        tris.push([0, ring(1, s), ring(1, s + 1)]);
+        tris.push([south, ring(rings - 1, s + 1), ring(rings - 1, s)]);
+        for r in 1..rings - 1 {
+            let (a, b, c, d) = (
+                ring(r, s),
+                ring(r + 1, s),
+                ring(r + 1, s + 1),
+                ring(r, s + 1),
+            );
+            tris.push([a, b, c]);
+            tris.push([a, c, d]);
+        }
+    }
+    TriMesh::new(pos, tris)
+}
+
+/// Found in Blender (issue 19): on an exported UV sphere, Delaunay put near-flat
+/// tetrahedra on the quads (four cocircular corners, coplanar only to rounding); each
+/// was merged into one neighbour, leaving the other a cut face a hair under the surface,
+/// shown with the interior material: 78 triangles, 1.4 % of the interior area. Clipping
+/// to the rounded quads also left edges of 1e-9 that Blender's 32-bit vertices collapse.
+#[test]
+fn no_cut_face_lies_on_the_surface_of_a_rounded_convex_mesh() {
+    let sphere = exported_uv_sphere();
+    assert_closed_outward(&sphere, "sphere");
+    let volume = sphere.signed_volume();
+    let tol = 1e-6 * diag(&sphere);
+    for seed in [3, 4, 5] {
+        let params = FractureParams {
+            seed,
+            ..tetra(20, 0, false, Placement::Interior)
+        };
+        let fr = fracture(&sphere, &params).unwrap();
+        let what = format!("exported sphere, seed {seed}");
+        check_fracture(&sphere, volume, &fr, 1e-7, &what);
+        let mut on_surface = 0;
+        for f in &fr.fragments {
+            for (t, &interior) in f.mesh.triangles.iter().zip(&f.interior) {
+                let c = t
+                    .iter()
+                    .map(|&i| f.mesh.positions[i as usize])
+                    .sum::<DVec3>()
+                    / 3.0;
+                let near = sphere.triangles.iter().any(|s| {
+                    let [a, b, cc] = s.map(|i| sphere.positions[i as usize]);
+                    point_triangle_distance(c, a, b, cc) <= tol
+                });
+                on_surface += usize::from(interior && near);
+            }
+        }
+        assert_eq!(on_surface, 0, "{what}: interior triangles on the surface");
+        // Nor is any edge too short for the 32-bit floats a file or a viewer holds (the
+        // tetrahedra are kept whole, not clipped by a hair to the rounded quads).
+        let f32s = |p: DVec3| [p.x as f32, p.y as f32, p.z as f32];
+        for (k, f) in fr.fragments.iter().enumerate() {
+            for t in &f.mesh.triangles {
+                let [a, b, c] = t.map(|i| f32s(f.mesh.positions[i as usize]));
+                assert!(
+                    a != b && b != c && a != c,
+                    "{what}: fragment {k} collapses in f32"
+                );
+            }
+        }
+    }
+}
+
+/// Found in Blender (issue 19): a cut vertex interpolated onto a tetrahedron's corner
+/// came out a few units in the last place from it, an edge of 1e-16 that every `f32`
+/// writer and viewer collapses, dropping its two triangles.
+#[test]
+fn no_fragment_has_an_edge_of_rounding_length() {
+    let bird = builtin::bird();
+    for seed in 0..4 {
+        let params = FractureParams {
+            seed,
+            ..tetra(50, 0, false, Placement::Interior)
+        };
+        let fr = fracture(&bird, &params).unwrap();
+        for (k, f) in fr.fragments.iter().enumerate() {
+            let size = diag(&f.mesh);
+            for t in &f.mesh.triangles {
+                for e in 0..3 {
+                    let (a, b) = (t[e] as usize, t[(e + 1) % 3] as usize);
+                    let len = f.mesh.positions[a].distance(f.mesh.positions[b]);
+                    assert!(
+                        len > 1e-13 * size,
+                        "bird seed {seed}, fragment {k}: an edge {len:e} long (size {size})"
+                    );
+                }
+            }
+        }
+    }
 }

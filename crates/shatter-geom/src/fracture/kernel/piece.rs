@@ -53,6 +53,11 @@ pub(crate) struct Piece {
     pub faces: Vec<Face>,
 }
 
+/// Edges at most this fraction of a piece's size long are rounding: two copies of one
+/// point (see [`Piece::collapse_rounding_edges`]). Far below the cuts' on-plane
+/// tolerance (1e-10) and far above one unit in the last place (1e-16).
+pub const ROUNDING_EDGE: f64 = 1e-13;
+
 impl Piece {
     /// A piece from a mesh, welding vertices at exactly equal positions; all triangles
     /// are surface triangles, each tagged with its index in `mesh` ([`surface_tag`]).
@@ -91,8 +96,73 @@ impl Piece {
     /// Merges vertices at exactly equal positions and drops the triangles that then
     /// repeat a vertex (slivers of rounding, e.g. cuts through a nearly flat triangle
     /// meeting at one point). Each dropped triangle takes an edge and its reverse with
-    /// it, so a closed piece stays closed.
+    /// it, so a closed piece stays closed. Then collapses the edges of rounding length
+    /// ([`Piece::collapse_rounding_edges`]).
     pub fn weld(&mut self) {
+        self.weld_equal();
+        self.collapse_rounding_edges();
+    }
+
+    /// Collapses every edge at most [`ROUNDING_EDGE`] of the piece's size long into its
+    /// first vertex, and drops the triangles that then repeat a vertex, when the piece
+    /// stays closed (else it is left as it was).
+    ///
+    /// Such an edge joins two computed copies of one point: a cut vertex interpolated
+    /// onto a corner that another plane's cut made (a tetrahedron's corner, which is a
+    /// mesh vertex), a few units in the last place away. Kept, the pair is two vertices
+    /// in `f64` but one in any `f32` writer or viewer, where its two triangles vanish.
+    pub fn collapse_rounding_edges(&mut self) {
+        if self.tris.is_empty() {
+            return;
+        }
+        let size = mesh_scale(self);
+        let tol2 = (ROUNDING_EDGE * size).powi(2);
+        let mut sets: Option<UnionFind> = None;
+        for t in &self.tris {
+            for k in 0..3 {
+                let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
+                if self.pos[a].distance_squared(self.pos[b]) <= tol2 {
+                    sets.get_or_insert_with(|| UnionFind::new(self.pos.len()))
+                        .union(a, b);
+                }
+            }
+        }
+        let Some(mut sets) = sets else {
+            return;
+        };
+        let mut collapsed = self.clone();
+        collapsed.tris.clear();
+        collapsed.tags.clear();
+        for (t, &tag) in self.tris.iter().zip(&self.tags) {
+            let t = t.map(|i| sets.find(i as usize) as u32);
+            if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
+                collapsed.tris.push(t);
+                collapsed.tags.push(tag);
+            }
+        }
+        if !collapsed.tris.is_empty() && collapsed.is_closed() {
+            collapsed.compact();
+            *self = collapsed;
+        }
+    }
+
+    /// Every directed edge once, with its reverse once: closed, and a 2-manifold by
+    /// edges.
+    pub fn is_closed(&self) -> bool {
+        let mut count: FastMap<(u32, u32), u32> = FastMap::default();
+        count.reserve(3 * self.tris.len());
+        for tri in &self.tris {
+            for k in 0..3 {
+                *count.entry((tri[k], tri[(k + 1) % 3])).or_default() += 1;
+            }
+        }
+        count
+            .iter()
+            .all(|(&(a, b), &n)| n == 1 && count.get(&(b, a)) == Some(&1))
+    }
+
+    /// Merges vertices at exactly equal positions (see [`Piece::weld`]).
+    fn weld_equal(&mut self) {
         debug_assert!(self.faces.is_empty(), "weld a closed piece");
         let mut map: FastMap<[u64; 3], u32> = FastMap::default();
         map.reserve(self.pos.len());

@@ -24,6 +24,15 @@ const CROSS_MARGIN: f64 = 1e-12;
 /// Tetrahedra of at most this fraction of the mesh's volume are flat: left out, their
 /// faces made one plane (as fragments they would have back-to-back faces).
 pub(super) const FLAT_FRACTION: f64 = 1e-16;
+/// A tetrahedron on the points' hull at most this thin (relative to the mesh's size) is
+/// flat too: four surface points coplanar up to the input's own precision (a float32
+/// file's quads are planar only to about 1e-7 of its size). Kept, it would be a sliver
+/// on the surface whose inner faces, merged into one neighbour, leave the other
+/// neighbour a cut face a hair under the outer surface, labelled interior.
+pub(super) const HULL_FLAT_THICKNESS: f64 = 1e-7;
+/// A mesh convex up to [`HULL_FLAT_THICKNESS`] whose points' hull is within this
+/// fraction of its volume is taken as that hull (its tetrahedra kept whole).
+const HULL_VOLUME_GAP: f64 = 1e-6;
 /// Clipped pieces of at most this fraction of the mesh's volume are dropped (what is
 /// left where a cut grazes the surface: zero volume up to rounding).
 const PIECE_FLAT_FRACTION: f64 = 1e-16;
@@ -63,8 +72,14 @@ pub(super) fn cells(
     let corners = |t: usize| del.tetrahedron(t).map(|i| pts[i as usize]);
     let hull_volume: f64 = (0..nt).map(|t| tet_volume(corners(t))).sum();
     // Every tetrahedron is inside when the points' hull is the mesh (a convex mesh
-    // holding every point): the thesis's case, no test needed.
-    let all_inside = (hull_volume - mesh_volume).abs() <= 1e-9 * mesh_volume;
+    // holding every point): the thesis's case, no test needed. A mesh read from a
+    // 32-bit file is convex only up to its rounding (its quads bent by ~1e-8): then too,
+    // and the tetrahedra are kept whole rather than clipped by a hair, which would leave
+    // edges far below what a 32-bit writer or viewer can hold.
+    let gap = (hull_volume - mesh_volume).abs();
+    let all_inside = gap <= 1e-9 * mesh_volume
+        || (gap <= HULL_VOLUME_GAP * mesh_volume
+            && convex_within(mesh, HULL_FLAT_THICKNESS * mesh_scale(mesh)));
     let side: Vec<Side> = if all_inside {
         vec![Side::Inside; nt]
     } else {
@@ -89,8 +104,14 @@ pub(super) fn cells(
     // A flat tetrahedron (four coplanar points, as on a torus's cross-section) is left
     // out, and its faces are made one plane: the caps its neighbours have on either side
     // then bond through their overlaps.
+    let thin = HULL_FLAT_THICKNESS * mesh_scale(mesh);
     let flat: Vec<bool> = (0..nt)
-        .map(|t| tet_volume(corners(t)) <= min_volume)
+        .map(|t| {
+            let c = corners(t);
+            let volume = tet_volume(c);
+            volume <= min_volume
+                || (del.neighbors(t).contains(&NO_NEIGHBOR) && thickness(c, volume) <= thin)
+        })
         .collect();
     // A flat tetrahedron on the points' hull (coplanar points on a flat part of it)
     // makes its neighbours' faces there outer surface.
@@ -172,6 +193,40 @@ pub(super) fn cells(
     out
 }
 
+/// Whether no edge of the closed `mesh` is reflex by more than `delta`: the far corner of
+/// each triangle across an edge lies at most `delta` above the other's plane. A closed
+/// surface convex at every edge is convex.
+fn convex_within(mesh: &Piece, delta: f64) -> bool {
+    let mut across: FastMap<(u32, u32), u32> = FastMap::default();
+    across.reserve(3 * mesh.tris.len());
+    for t in &mesh.tris {
+        for k in 0..3 {
+            across.insert((t[k], t[(k + 1) % 3]), t[(k + 2) % 3]);
+        }
+    }
+    mesh.tris.iter().all(|t| {
+        let [a, b, c] = t.map(|i| mesh.pos[i as usize]);
+        let n = (b - a).cross(c - a).normalize_or_zero();
+        (0..3).all(|k| match across.get(&(t[(k + 1) % 3], t[k])) {
+            Some(&d) => n.dot(mesh.pos[d as usize] - a) <= delta,
+            None => false,
+        })
+    })
+}
+
+/// The height of a tetrahedron of volume `volume` over its largest face: how thin it is.
+fn thickness(c: [DVec3; 4], volume: f64) -> f64 {
+    let largest = TET_FACES
+        .iter()
+        .map(|f| (c[f[1]] - c[f[0]]).cross(c[f[2]] - c[f[0]]).length() / 2.0)
+        .fold(0.0, f64::max);
+    if largest == 0.0 {
+        0.0
+    } else {
+        3.0 * volume / largest
+    }
+}
+
 /// The plane of face `f` of tetrahedron `t`, outward from `t`, tagged with the face:
 /// both tetrahedra of a face use the lower-numbered one's plane and tag (one of them
 /// flipped, which is exact), so they classify every vertex alike and their caps match.
@@ -240,7 +295,7 @@ pub(super) fn clip_cell(mesh: &Piece, planes: Vec<Plane>, eps: f64) -> Vec<Piece
             .flat_map(split_at_pinched_edges)
             .collect()
     };
-    let good = |parts: &Vec<Piece>| parts.iter().all(is_closed);
+    let good = |parts: &Vec<Piece>| parts.iter().all(Piece::is_closed);
     let greedy = clip_in_order(mesh, planes.clone(), eps, None).map(finish);
     if let Some(parts) = greedy.filter(good) {
         return parts;
@@ -364,24 +419,11 @@ fn split_at_pinched_edges(p: Piece) -> Vec<Piece> {
         }
     }
     let (parts, _) = p.clone().into_groups(&mut uf);
-    if parts.len() > 1 && parts.iter().all(is_closed) {
+    if parts.len() > 1 && parts.iter().all(Piece::is_closed) {
         parts
     } else {
         vec![p]
     }
-}
-
-/// Every directed edge once, with its reverse once.
-fn is_closed(p: &Piece) -> bool {
-    let mut count: FastMap<(u32, u32), u32> = FastMap::default();
-    for tri in &p.tris {
-        for k in 0..3 {
-            *count.entry((tri[k], tri[(k + 1) % 3])).or_default() += 1;
-        }
-    }
-    count
-        .iter()
-        .all(|(&(a, b), &n)| n == 1 && count.get(&(b, a)) == Some(&1))
 }
 
 /// The mesh's triangles bucketed on a 3D grid by their bounds.
