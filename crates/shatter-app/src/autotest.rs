@@ -270,8 +270,40 @@ fn run_script(
             test.record.insert("runtime".into(), stats_json(&stats));
             true
         }
+        // A user's own textured models (an OBJ with JPEG textures, a GLB with an
+        // embedded PNG), whole and then broken by two balls.
+        32 => {
+            ui_state.scene_file.path = concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/../../assets/scenes/textured.toml"
+            )
+            .to_owned();
+            match ui_state.scene_file.load() {
+                Ok(cmd) => pending.0.push(cmd),
+                Err(e) => {
+                    test.record
+                        .insert("textured_error".into(), json!(format!("{e:?}")));
+                }
+            }
+            true
+        }
+        33 => frames_in_step >= 20,
+        34 => {
+            shot(&mut test, "11_textured_whole.png");
+            test.record
+                .insert("textured_before".into(), stats_json(&stats));
+            pending.0.push(SimCommand::Start);
+            true
+        }
+        // The balls land at about 0.7 s and 0.9 s.
+        35 => sim_in_step >= 1.3,
+        36 => {
+            shot(&mut test, "12_textured_broken.png");
+            test.record.insert("textured".into(), stats_json(&stats));
+            true
+        }
         // Wait for the screenshots to reach the disk.
-        32 => test.shots.iter().all(|p| p.is_file()) && frames_in_step >= 5,
+        37 => test.shots.iter().all(|p| p.is_file()) && frames_in_step >= 5,
         _ => {
             write_state(&test);
             exit.write(AppExit::Success);

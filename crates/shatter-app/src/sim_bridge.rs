@@ -13,7 +13,7 @@ use shatter_sim::scene::Scene;
 use shatter_sim::{ExplosionSpec, ProjectileShape, RunState, SimEvent, World};
 
 use crate::commands::{BondModel, ObjectId, ObjectSpec, ShapeChoice, SimCommand};
-use crate::render::fragment_mesh::{FlatMesh, flat_mesh, flat_trimesh};
+use crate::render::fragment_mesh::{FlatPart, flat_trimesh, fragment_parts};
 use crate::spec_convert::{from_sim_spec, projectile_points, to_sim_spec};
 
 /// The scene the app opens with (also embedded in the web build).
@@ -385,8 +385,9 @@ impl SimBridge {
         out
     }
 
-    /// The flat-shaded mesh of a piece, in the frame its [`PiecePose`] maps to the world.
-    pub fn piece_mesh(&self, key: PieceKey) -> Option<FlatMesh> {
+    /// The parts (one per material) that draw a piece, in the frame its [`PiecePose`]
+    /// maps to the world.
+    pub fn piece_parts(&self, key: PieceKey) -> Option<Vec<FlatPart>> {
         if key.build != self.build {
             return None;
         }
@@ -395,13 +396,16 @@ impl SimBridge {
             let views = self.world.projectiles();
             let view = views.iter().find(|v| v.index == index)?;
             let mesh = view.spec.shape.mesh(view.spec.size);
-            return Some(flat_trimesh(&mesh, &[], view.spec.color));
+            return Some(vec![FlatPart {
+                material: None,
+                mesh: flat_trimesh(&mesh, &[], view.spec.color),
+            }]);
         }
         let id = shatter_sim::ObjectId(u32::try_from(key.object).ok()?);
         let fracture = self.world.object_fracture(id)?;
         let color = self.world.object_color(id)?;
         let fragment = fracture.fragments.get(key.fragment as usize)?;
-        Some(flat_mesh(fragment, color))
+        Some(fragment_parts(fragment, color, &fracture.materials))
     }
 
     /// The specification of object `id` as the panels show it (for Edit).

@@ -85,6 +85,17 @@ fn autotest_session_breaks_bonds_and_saves_screenshots() {
     let cuts = state["runtime"]["runtime_fractures"].as_u64();
     assert!(cuts.is_some_and(|n| n >= 2), "{}", state["runtime"]);
     assert!(state["runtime"]["fragments"].as_u64().unwrap() > 20);
+    // The user's textured models (an open, multi-part OBJ repaired, a GLB) load, stand
+    // whole, and break.
+    assert!(
+        state.get("textured_error").is_none(),
+        "{}",
+        state["textured_error"]
+    );
+    assert_eq!(state["textured_before"]["bonds_broken"].as_u64(), Some(0));
+    assert!(state["textured_before"]["fragments"].as_u64().unwrap() >= 40);
+    let broken = state["textured"]["bonds_broken"].as_u64();
+    assert!(broken.is_some_and(|n| n > 0), "{}", state["textured"]);
 
     let shots = state["screenshots"].as_array().unwrap();
     assert!(shots.len() >= 5, "too few screenshots: {shots:?}");

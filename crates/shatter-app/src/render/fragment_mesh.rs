@@ -1,13 +1,19 @@
-//! Flat-shaded render meshes for fragments.
+//! Render meshes for fragments.
 //!
 //! Every triangle gets its own three vertices (so normals are per face, never smoothed
 //! across the sharp edges of a fragment) and a vertex colour: the object's colour on the
 //! original surface, a darker shade on interior (cut) faces.
+//!
+//! A fragment of a file's model (one with materials) is drawn as the file looks instead:
+//! one part per material, with the corners' UVs, the file's normals on its surface
+//! (smooth where it is smooth), its vertex colours, and the material's base colour and
+//! texture ([`FlatPart`]).
 
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Mesh, PrimitiveTopology};
 use shatter_geom::TriMesh;
 use shatter_geom::fracture::Fragment;
+use shatter_geom::model::Material;
 
 /// How much darker interior (cut) faces are than the surface.
 pub const INTERIOR_SHADE: f32 = 0.45;
@@ -21,6 +27,76 @@ pub struct FlatMesh {
     pub normals: Vec<[f32; 3]>,
     /// Linear RGBA colour per vertex.
     pub colors: Vec<[f32; 4]>,
+    /// Texture coordinates per vertex (glTF's convention, which Bevy shares), or empty.
+    pub uvs: Vec<[f32; 2]>,
+}
+
+/// The triangles of one fragment drawn with one material.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlatPart {
+    /// The file's material and its index in the fracture's list; `None`: the object's
+    /// colour, carried by the vertex colours.
+    pub material: Option<(u32, Material)>,
+    /// The vertices.
+    pub mesh: FlatMesh,
+}
+
+/// `fragment` as parts to draw: one per material of `materials` (the fracture's list)
+/// that its triangles use, or, when the list is empty (a built-in shape), one part in
+/// `color` as [`flat_mesh`] draws it.
+pub fn fragment_parts(
+    fragment: &Fragment,
+    color: [f32; 3],
+    materials: &[Material],
+) -> Vec<FlatPart> {
+    if materials.is_empty() || fragment.material.len() != fragment.mesh.triangles.len() {
+        return vec![FlatPart {
+            material: None,
+            mesh: flat_mesh(fragment, color),
+        }];
+    }
+    let mut by_material: std::collections::BTreeMap<u32, Vec<usize>> = Default::default();
+    for (t, &m) in fragment.material.iter().enumerate() {
+        by_material.entry(m).or_default().push(t);
+    }
+    let corners = &fragment.corners;
+    by_material
+        .into_iter()
+        .map(|(m, tris)| {
+            let n = tris.len() * 3;
+            let mut mesh = FlatMesh {
+                positions: Vec::with_capacity(n),
+                normals: Vec::with_capacity(n),
+                colors: Vec::with_capacity(n),
+                uvs: Vec::with_capacity(if corners.uv.is_some() { n } else { 0 }),
+            };
+            for t in tris {
+                let [a, b, c] = fragment.mesh.triangle(t);
+                let face = (b - a)
+                    .cross(c - a)
+                    .try_normalize()
+                    .unwrap_or(glam::DVec3::Y)
+                    .as_vec3()
+                    .to_array();
+                let interior = fragment.interior.get(t).copied().unwrap_or(false);
+                let normals = match &corners.normal {
+                    Some(list) if !interior => list[t],
+                    _ => [face; 3],
+                };
+                let colors = corners.color.as_ref().map_or([[1.0; 4]; 3], |list| list[t]);
+                for (k, p) in [a, b, c].into_iter().enumerate() {
+                    mesh.positions.push(p.as_vec3().to_array());
+                    mesh.normals.push(normals[k]);
+                    mesh.colors.push(colors[k]);
+                }
+                if let Some(uv) = &corners.uv {
+                    mesh.uvs.extend_from_slice(&uv[t]);
+                }
+            }
+            let material = materials.get(m as usize).cloned().map(|mat| (m, mat));
+            FlatPart { material, mesh }
+        })
+        .collect()
 }
 
 /// The colour of interior faces for a surface colour (linear RGB in `[0, 1]`).
@@ -45,6 +121,7 @@ pub fn flat_trimesh(mesh: &TriMesh, interior: &[bool], color: [f32; 3]) -> FlatM
         positions: Vec::with_capacity(n),
         normals: Vec::with_capacity(n),
         colors: Vec::with_capacity(n),
+        uvs: Vec::new(),
     };
     let surface = color;
     let inner = interior_color(color);
@@ -67,13 +144,18 @@ pub fn flat_trimesh(mesh: &TriMesh, interior: &[bool], color: [f32; 3]) -> FlatM
 
 /// A Bevy mesh from flat vertex data (kept in main memory too, for nothing else needs it).
 pub fn to_bevy_mesh(flat: FlatMesh) -> Mesh {
-    Mesh::new(
+    let mesh = Mesh::new(
         PrimitiveTopology::TriangleList,
         RenderAssetUsages::RENDER_WORLD,
     )
     .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, flat.positions)
     .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, flat.normals)
-    .with_inserted_attribute(Mesh::ATTRIBUTE_COLOR, flat.colors)
+    .with_inserted_attribute(Mesh::ATTRIBUTE_COLOR, flat.colors);
+    if flat.uvs.is_empty() {
+        mesh
+    } else {
+        mesh.with_inserted_attribute(Mesh::ATTRIBUTE_UV_0, flat.uvs)
+    }
 }
 
 #[cfg(test)]
@@ -117,6 +199,44 @@ mod tests {
                 "normal of face {tri} points inward"
             );
         }
+    }
+
+    #[test]
+    fn a_file_models_fragment_is_drawn_per_material_with_its_uvs_and_normals() {
+        let mut frag = tetra(1);
+        frag.material = vec![0, 1, 0, 0];
+        let uv = |t: usize| [[t as f32, 0.0], [t as f32, 0.5], [t as f32, 1.0]];
+        frag.corners.uv = Some((0..4).map(uv).collect());
+        let smooth = [[0.0, 1.0, 0.0]; 3];
+        frag.corners.normal = Some(vec![smooth; 4]);
+        let materials = [Material::named("skin"), Material::named("interior")];
+        let parts = fragment_parts(&frag, [0.8, 0.6, 0.4], &materials);
+        assert_eq!(parts.len(), 2);
+        let (m0, skin) = parts[0].material.clone().unwrap();
+        assert_eq!((m0, skin.name.as_str()), (0, "skin"));
+        assert_eq!(parts[1].material.as_ref().unwrap().0, 1);
+        // Triangles 0, 2, 3 in the first part, with their own UVs, in order.
+        assert_eq!(parts[0].mesh.positions.len(), 9);
+        assert_eq!(parts[0].mesh.uvs.len(), 9);
+        assert_eq!(parts[0].mesh.uvs[3..6], uv(2));
+        assert_eq!(parts[1].mesh.uvs[..], uv(1));
+        // The file's normals on the surface; the interior face flat, outward.
+        assert!(parts[0].mesh.normals.iter().all(|n| *n == smooth[0]));
+        let n = glam::Vec3::from_array(parts[1].mesh.normals[0]);
+        let p = glam::Vec3::from_array(parts[1].mesh.positions[0]);
+        assert!(n.dot(p - glam::Vec3::splat(0.25)) > 0.0 && n != glam::Vec3::Y);
+        // No colour in the file: white, so the material's colour and texture show.
+        assert!(parts[0].mesh.colors.iter().all(|c| *c == [1.0; 4]));
+    }
+
+    #[test]
+    fn a_built_in_shape_is_one_part_in_the_objects_colour() {
+        let frag = tetra(1);
+        let parts = fragment_parts(&frag, [0.8, 0.6, 0.4], &[]);
+        assert_eq!(parts.len(), 1);
+        assert!(parts[0].material.is_none());
+        assert_eq!(parts[0].mesh, flat_mesh(&frag, [0.8, 0.6, 0.4]));
+        assert!(parts[0].mesh.uvs.is_empty());
     }
 
     #[test]

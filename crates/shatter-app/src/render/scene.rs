@@ -2,9 +2,15 @@
 
 use std::collections::HashMap;
 
+use bevy::asset::RenderAssetUsages;
+use bevy::image::{
+    CompressedImageFormats, ImageAddressMode, ImageSampler, ImageSamplerDescriptor, ImageType,
+};
 use bevy::light::CascadeShadowConfigBuilder;
 use bevy::prelude::*;
+use shatter_geom::model::Material;
 
+use crate::commands::ObjectId;
 use crate::render::fragment_mesh::to_bevy_mesh;
 use crate::sim_bridge::{PieceKey, SimBridge};
 
@@ -23,11 +29,13 @@ impl Default for SceneRenderPlugin {
     }
 }
 
-/// Entities drawing each piece, and the material they share.
+/// Entities drawing each piece, the material they share, and the materials of file
+/// models (per build, object and index in the fracture's list).
 #[derive(Resource, Default)]
 struct PieceEntities {
     entities: HashMap<PieceKey, Entity>,
     material: Handle<StandardMaterial>,
+    file_materials: HashMap<(u32, ObjectId, u32), Handle<StandardMaterial>>,
 }
 
 /// Marks an entity drawing a fragment.
@@ -96,11 +104,58 @@ fn setup_world(
     });
 }
 
+/// A file's material as Bevy draws it: its base colour, texture (decoded here; one that
+/// does not decode is left out with a warning, the colour kept), metalness and roughness.
+/// The fragments' vertex colours (white unless the file has colours) multiply it.
+fn file_material(m: &Material, images: &mut Assets<Image>) -> StandardMaterial {
+    let [r, g, b, a] = m.base_color;
+    let texture = m.base_color_texture.as_ref().and_then(|t| {
+        match Image::from_buffer(
+            &t.image.bytes,
+            ImageType::MimeType(t.image.format.mime()),
+            CompressedImageFormats::NONE,
+            true,
+            // Repeating, as glTF's default sampler and OBJ's maps do: a file's UVs may
+            // run past [0, 1] (Khronos' textured box spans 0..6).
+            ImageSampler::Descriptor(ImageSamplerDescriptor {
+                address_mode_u: ImageAddressMode::Repeat,
+                address_mode_v: ImageAddressMode::Repeat,
+                ..ImageSamplerDescriptor::linear()
+            }),
+            RenderAssetUsages::RENDER_WORLD,
+        ) {
+            Ok(image) => Some(images.add(image)),
+            Err(e) => {
+                warn!(
+                    "material {}: texture {} does not decode ({e}); drawn in its colour",
+                    m.name, t.image.name
+                );
+                None
+            }
+        }
+    });
+    StandardMaterial {
+        base_color: Color::linear_rgba(r, g, b, a),
+        base_color_texture: texture,
+        metallic: m.metallic,
+        perceptual_roughness: m.roughness,
+        alpha_mode: if a < 1.0 {
+            AlphaMode::Blend
+        } else {
+            AlphaMode::Opaque
+        },
+        ..default()
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
 fn sync_pieces(
     mut commands: Commands,
     bridge: Res<SimBridge>,
     mut pieces: ResMut<PieceEntities>,
     mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+    mut images: ResMut<Assets<Image>>,
     mut transforms: Query<&mut Transform, With<PieceMarker>>,
 ) {
     let poses = bridge.poses();
@@ -116,20 +171,36 @@ fn sync_pieces(
             }
             continue;
         }
-        let Some(flat) = bridge.piece_mesh(pose.key) else {
+        let Some(parts) = bridge.piece_parts(pose.key) else {
             continue;
         };
-        let mesh = meshes.add(to_bevy_mesh(flat));
-        let material = pieces.material.clone();
-        let e = commands
-            .spawn((
-                Mesh3d(mesh),
+        let mut drawn = Vec::with_capacity(parts.len());
+        for part in parts {
+            let material = match &part.material {
+                None => pieces.material.clone(),
+                Some((index, m)) => pieces
+                    .file_materials
+                    .entry((pose.key.build, pose.key.object, *index))
+                    .or_insert_with(|| materials.add(file_material(m, &mut images)))
+                    .clone(),
+            };
+            drawn.push((
+                Mesh3d(meshes.add(to_bevy_mesh(part.mesh))),
                 MeshMaterial3d(material),
-                transform,
-                PieceMarker(pose.key),
-            ))
-            .id();
-        pieces.entities.insert(pose.key, e);
+            ));
+        }
+        let mut e = commands.spawn((transform, Visibility::Visible, PieceMarker(pose.key)));
+        if drawn.len() == 1 {
+            // One material (always, for built-in shapes): the piece's own entity draws it.
+            e.insert(drawn.remove(0));
+        } else {
+            e.with_children(|parent| {
+                for part in drawn {
+                    parent.spawn(part);
+                }
+            });
+        }
+        pieces.entities.insert(pose.key, e.id());
     }
     pieces.entities.retain(|key, e| {
         let keep = alive.contains(key);
@@ -138,4 +209,9 @@ fn sync_pieces(
         }
         keep
     });
+    // Materials of builds no piece shows any more.
+    let live: std::collections::HashSet<u32> = pieces.entities.keys().map(|k| k.build).collect();
+    pieces
+        .file_materials
+        .retain(|(build, _, _), _| live.contains(build));
 }

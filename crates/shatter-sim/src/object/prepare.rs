@@ -55,17 +55,33 @@ pub fn resolve_fracture(spec: &ObjectSpec, key: &str) -> Result<Arc<Fracture>, S
             }
             let pattern = params.pattern.unwrap_or(spec.material.pattern);
             let rough = local_roughness(spec);
-            geom_fracture(&shape.mesh(), params, method, pattern, &rough, key)
+            let mesh = shape.mesh();
+            geom_fracture(Input::Mesh(&mesh), params, method, pattern, &rough, key)
         }
         FractureSource::MeshFile { path, params } => {
             let method = params.method.unwrap_or(spec.material.method);
             let pattern = params.pattern.unwrap_or(spec.material.pattern);
-            let mesh = shatter_geom::io::load_mesh(path)
-                .map_err(|e| crate::scene::load::mesh_error(path, &e))?;
+            let model = file_model(path, key)?;
             let rough = local_roughness(spec);
-            geom_fracture(&mesh, params, method, pattern, &rough, key)
+            geom_fracture(Input::Model(&model), params, method, pattern, &rough, key)
         }
     }
+}
+
+/// A mesh file's model, repaired into a closed solid as `shatter fracture` repairs it
+/// (cracks welded, holes filled, open sheets dropped, crossing parts joined): a user's
+/// own model, open in places or made of parts, is what the Custom object takes.
+fn file_model(path: &str, key: &str) -> Result<Model, SimError> {
+    let model = shatter_geom::io::load_model(path)
+        .map_err(|e| crate::scene::load::mesh_error(path, &e))?
+        .model;
+    let options = shatter_geom::mesh::repair::RepairOptions::default();
+    shatter_geom::mesh::repair::repair(&model, &options)
+        .map(|(model, _)| model)
+        .map_err(|e| SimError::Fracture {
+            key: key.to_string(),
+            reason: format!("{path}: {e}"),
+        })
 }
 
 /// The intact body of an `on_impact` object: its model (with UVs, normals and materials
@@ -74,11 +90,7 @@ fn resolve_whole(spec: &ObjectSpec, key: &str) -> Result<Arc<Fracture>, SimError
     let model = match &spec.source {
         FractureSource::Prebuilt(f) => return Ok(f.clone()),
         FractureSource::Shape { shape, .. } => Model::from_mesh(shape.mesh()),
-        FractureSource::MeshFile { path, .. } => {
-            shatter_geom::io::load_model(path)
-                .map_err(|e| crate::scene::load::mesh_error(path, &e))?
-                .model
-        }
+        FractureSource::MeshFile { path, .. } => file_model(path, key)?,
     };
     let whole = crate::runtime::whole(&model).map_err(|e| SimError::Fracture {
         key: key.to_string(),
@@ -103,10 +115,17 @@ fn local_roughness(spec: &ObjectSpec) -> Roughness {
     }
 }
 
-/// Runs `shatter_geom::fracture` (tetra, voronoi, slice) on a mesh, then roughens its cut
-/// faces (`rough`; off: nothing changes).
+/// What a precomputed fracture cuts: a built-in shape's bare mesh (drawn in the object's
+/// colour), or a file's model, whose UVs, normals and materials the fragments keep.
+enum Input<'a> {
+    Mesh(&'a TriMesh),
+    Model(&'a Model),
+}
+
+/// Runs `shatter_geom::fracture` (tetra, voronoi, slice) on a mesh or model, then
+/// roughens its cut faces (`rough`; off: nothing changes).
 fn geom_fracture(
-    mesh: &TriMesh,
+    input: Input<'_>,
     params: &FractureParams,
     method: MethodKind,
     pattern: Pattern,
@@ -138,13 +157,14 @@ fn geom_fracture(
             ));
         }
     };
-    let fracture = geom::fracture(
-        mesh,
-        &geom::FractureParams {
-            method,
-            seed: params.seed,
-        },
-    )
+    let params = geom::FractureParams {
+        method,
+        seed: params.seed,
+    };
+    let fracture = match input {
+        Input::Mesh(mesh) => geom::fracture(mesh, &params),
+        Input::Model(model) => geom::fracture_model(model, &params),
+    }
     .map_err(|e| SimError::Fracture {
         key: key.to_string(),
         reason: e.to_string(),
