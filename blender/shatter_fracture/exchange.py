@@ -17,6 +17,7 @@ import re
 
 import bmesh
 import bpy
+import numpy as np
 
 from . import objfile
 from .runner import ShatterError
@@ -76,6 +77,26 @@ def _cycle(face):
     return tuple(pts[k:] + pts[:k])
 
 
+def _nothing_to_weld(mesh):
+    """Whether `mesh` has no two vertices at one position and no two faces on the same
+    corners: then `weld` has nothing to do (shatter's own OBJ shares its vertices and,
+    since merged slivers are true unions, has no inner walls), and the bmesh round trip,
+    half of the operator's time on the bird's 100 fragments, is skipped. Vectorised."""
+    n = len(mesh.vertices)
+    co = np.empty(3 * n, dtype=np.float32)
+    mesh.vertices.foreach_get("co", co)
+    if len(np.unique(co.reshape(-1, 3), axis=0)) != n:
+        return False
+    sizes = np.empty(len(mesh.polygons), dtype=np.int64)
+    mesh.polygons.foreach_get("loop_total", sizes)
+    if sizes.size == 0 or np.any(sizes != 3):
+        return False  # other polygons: let bmesh look (shatter writes triangles only)
+    corners = np.empty(3 * len(mesh.polygons), dtype=np.int64)
+    mesh.polygons.foreach_get("vertices", corners)
+    faces = np.sort(corners.reshape(-1, 3), axis=1)
+    return len(np.unique(faces, axis=0)) == len(faces)
+
+
 def weld(mesh):
     """Makes an imported fragment one closed 2-manifold again; returns the number of
     internal faces removed.
@@ -91,6 +112,8 @@ def weld(mesh):
        live on the corners, so nothing is lost.
     Walls where the two shells' faces differ (one side's cap only part of the other's,
     or split at other points) are not removed: the fragment stays as shatter made it."""
+    if _nothing_to_weld(mesh):
+        return 0
     # The file's normals, per corner and absolute: Blender stores custom normals relative
     # to each corner's fan of faces, which welding changes, so they ride through the weld
     # as a corner attribute and are set again afterwards.

@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 from typing import Callable, List, Optional
 
 import bpy
+import numpy as np
 from mathutils import Matrix, Vector
 
 from . import bonds, exchange, materials, runner, seeds
@@ -70,19 +71,21 @@ class Outcome:
 
 
 def volume_centroid(mesh):
-    """Signed volume and volume centroid of a closed mesh, in its own coordinates."""
+    """Signed volume and volume centroid of a closed mesh, in its own coordinates
+    (vectorised: a Python loop over the triangles was a sixth of the operator's time)."""
     mesh.calc_loop_triangles()
-    verts = mesh.vertices
-    volume = 0.0
-    acc = Vector((0.0, 0.0, 0.0))
-    for tri in mesh.loop_triangles:
-        a, b, c = (verts[i].co for i in tri.vertices)
-        v = a.dot(b.cross(c)) / 6.0
-        volume += v
-        acc += v * (a + b + c) / 4.0
+    co = np.empty(3 * len(mesh.vertices))
+    mesh.vertices.foreach_get("co", co)
+    tris = np.empty(3 * len(mesh.loop_triangles), dtype=np.int64)
+    mesh.loop_triangles.foreach_get("vertices", tris)
+    p = co.reshape(-1, 3)[tris.reshape(-1, 3)]
+    a, b, c = p[:, 0], p[:, 1], p[:, 2]
+    v = np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0
+    volume = float(v.sum())
     if abs(volume) < 1e-300:
         return volume, Vector((0.0, 0.0, 0.0))
-    return volume, acc / volume
+    acc = (v[:, None] * (a + b + c) / 4.0).sum(axis=0)
+    return volume, Vector(acc / volume)
 
 
 def _target_collection(context, name, parent=None):

@@ -65,7 +65,9 @@ fn default_scene_is_the_bundled_file_with_every_object() {
     let poses = b.poses();
     assert_eq!(poses.len(), s.fragments);
     for p in poses.iter().step_by(37) {
-        let mesh = b.piece_mesh(p.key).unwrap();
+        let parts = b.piece_parts(p.key).unwrap();
+        assert_eq!(parts.len(), 1, "a built-in shape is drawn in one part");
+        let mesh = &parts[0].mesh;
         assert!(!mesh.positions.is_empty());
         assert_eq!(mesh.positions.len() % 3, 0);
         assert_eq!(mesh.positions.len(), mesh.colors.len());
@@ -122,8 +124,8 @@ fn reset_puts_everything_back_and_replaces_the_meshes() {
         .collect();
     assert_eq!(initial, after, "reset restores every fragment exactly");
     // Meshes of the old build are stale (projectile keys are reused after a reset).
-    assert!(b.piece_mesh(key).is_none());
-    assert!(b.piece_mesh(b.poses()[0].key).is_some());
+    assert!(b.piece_parts(key).is_none());
+    assert!(b.piece_parts(b.poses()[0].key).is_some());
 }
 
 #[test]
@@ -329,7 +331,7 @@ fn custom_projectile_and_custom_mesh_checks() {
         .unwrap()
         .key;
     // The drawn hull of the tetrahedron: 4 triangles.
-    assert_eq!(b.piece_mesh(key).unwrap().positions.len(), 12);
+    assert_eq!(b.piece_parts(key).unwrap()[0].mesh.positions.len(), 12);
     let err = b
         .apply(SimCommand::Fire {
             spec: ProjectileSpec {
@@ -391,4 +393,45 @@ fn every_example_scene_loads_and_the_runtime_one_starts_whole() {
         err.contains("no example scene `nope`") && err.contains("runtime"),
         "{err}"
     );
+}
+
+/// Issue 13: a Custom object made from a textured file is drawn as the file looks: its
+/// fragments come in parts per material, the surface with the file's texture and UVs,
+/// the cut faces with the interior material.
+#[test]
+fn a_textured_custom_object_keeps_its_texture_and_uvs() {
+    let mut b = SimBridge::default_scene();
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/corpus/gltf/BoxTextured.glb");
+    let id = b
+        .apply(SimCommand::AddObject(ObjectSpec {
+            shape: ShapeChoice::Custom(path),
+            material: MaterialPreset::Ceramic,
+            ..cube_spec(DVec3::new(0.0, 3.0, 4.0))
+        }))
+        .unwrap()
+        .unwrap();
+    let keys: Vec<_> = b
+        .poses()
+        .into_iter()
+        .filter(|p| p.key.object == id)
+        .map(|p| p.key)
+        .collect();
+    assert!(keys.len() >= 8, "{} fragments", keys.len());
+    let (mut textured, mut interior) = (0, 0);
+    for key in keys {
+        for part in b.piece_parts(key).unwrap() {
+            let (_, material) = part.material.expect("a file's fragment names its material");
+            let n = part.mesh.positions.len();
+            assert_eq!(part.mesh.uvs.len(), n, "every vertex has a UV");
+            assert!(part.mesh.uvs.iter().flatten().all(|x| x.is_finite()));
+            if material.base_color_texture.is_some() {
+                textured += 1;
+            } else if material.name == "interior" {
+                interior += 1;
+            }
+        }
+    }
+    assert!(textured >= 8, "{textured} textured parts");
+    assert!(interior >= 8, "{interior} interior parts");
 }
