@@ -405,7 +405,24 @@ impl SimBridge {
         let fracture = self.world.object_fracture(id)?;
         let color = self.world.object_color(id)?;
         let fragment = fracture.fragments.get(key.fragment as usize)?;
-        Some(fragment_parts(fragment, color, &fracture.materials))
+        // A file's model is drawn with its own materials; a built-in shape (whose
+        // fracture carries only a default surface material) in the object's colour.
+        let materials: &[_] = if self.from_file(id) {
+            &fracture.materials
+        } else {
+            &[]
+        };
+        Some(fragment_parts(fragment, color, materials))
+    }
+
+    /// Whether object `id`, or the object a runtime cut made it from, is a mesh file's.
+    fn from_file(&self, mut id: shatter_sim::ObjectId) -> bool {
+        while let Some(parent) = self.world.spawned_from(id) {
+            id = parent;
+        }
+        self.world
+            .object_spec(id)
+            .is_some_and(|s| matches!(s.source, shatter_sim::FractureSource::MeshFile { .. }))
     }
 
     /// The specification of object `id` as the panels show it (for Edit).
