@@ -407,7 +407,7 @@ impl SimBridge {
         let fragment = fracture.fragments.get(key.fragment as usize)?;
         // A file's model is drawn with its own materials; a built-in shape (whose
         // fracture carries only a default surface material) in the object's colour.
-        let materials: &[_] = if self.from_file(id) {
+        let materials: &[_] = if self.is_file_object(id) {
             &fracture.materials
         } else {
             &[]
@@ -416,7 +416,7 @@ impl SimBridge {
     }
 
     /// Whether object `id`, or the object a runtime cut made it from, is a mesh file's.
-    fn from_file(&self, mut id: shatter_sim::ObjectId) -> bool {
+    fn is_file_object(&self, mut id: shatter_sim::ObjectId) -> bool {
         while let Some(parent) = self.world.spawned_from(id) {
             id = parent;
         }

@@ -129,20 +129,26 @@ impl MaterialPreset {
         }
     }
 
-    /// The preset a material was made from: the first whose density, friction and
-    /// restitution match (the strength is often overridden by a break force).
+    /// The preset a material was made from: the one whose fixed properties match (the
+    /// default method and pattern, the stress strengths, wear and roughness), which no
+    /// scene key overrides; density, friction, restitution and strength may have been.
     ///
     /// ```
     /// use shatter_sim::{Material, MaterialPreset};
     /// let mut wood = MaterialPreset::Wood.material();
     /// wood.strength = 1.0;
+    /// wood.density = 450.0;
     /// assert_eq!(MaterialPreset::of(&wood), Some(MaterialPreset::Wood));
     /// ```
     pub fn of(m: &Material) -> Option<MaterialPreset> {
-        MaterialPreset::ALL.iter().copied().find(|p| {
-            let q = p.material();
-            q.density == m.density && q.friction == m.friction && q.restitution == m.restitution
-        })
+        let fixed = |q: &Material| {
+            let strengths = [q.compression, q.tension, q.shear, q.wear];
+            (q.method, q.pattern, strengths, q.roughness)
+        };
+        MaterialPreset::ALL
+            .iter()
+            .copied()
+            .find(|p| fixed(&p.material()) == fixed(m))
     }
 }
 

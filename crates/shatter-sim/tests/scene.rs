@@ -94,3 +94,26 @@ fn a_saved_world_loads_back_into_the_same_initial_state() {
     assert_eq!(world.digest(), world2.digest(), "same scene, same run");
     assert!(world.stats().bonds_broken > 0);
 }
+
+/// A saved scene kept its objects' densities but not their presets: the default scene's
+/// glass pane, ceramic bird and wooden crate came back as stone (stone's strengths, wear
+/// and rough cut faces).
+#[test]
+fn a_saved_scene_keeps_each_objects_material() {
+    let scene = Scene::load(&scenes_dir().join("default.toml")).unwrap();
+    let world = scene.build(None).unwrap();
+    let text = world.to_scene_toml().unwrap();
+    let again = Scene::parse(&text)
+        .unwrap_or_else(|e| panic!("{e}\n{text}"))
+        .build(None)
+        .unwrap();
+    let ids = world.object_ids();
+    assert_eq!(ids.len(), 4);
+    for id in ids {
+        let (a, b) = (
+            world.object_spec(id).unwrap(),
+            again.object_spec(id).unwrap(),
+        );
+        assert_eq!(a.material, b.material, "{}", a.name);
+    }
+}

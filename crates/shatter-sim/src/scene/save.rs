@@ -4,7 +4,7 @@ use glam::EulerRot;
 use toml::Spanned;
 
 use crate::error::SimError;
-use crate::material::{MethodKind, Pattern};
+use crate::material::{MaterialPreset, MethodKind, Pattern};
 use crate::object::FractureSource;
 use crate::runtime::FractureTiming;
 use crate::scene::file::{ExplosionEntry, ObjectEntry, ProjectileEntry, SceneFile, WorldSection};
@@ -77,7 +77,9 @@ impl World {
                 center: Some(params.center),
                 placement: Some(sp(params.placement.to_string())),
                 seed: Some(params.seed),
-                material: None,
+                // The preset, then what the object overrides: without it a glass pane
+                // came back as stone (its strengths, wear and rough faces).
+                material: MaterialPreset::of(&spec.material).map(|p| sp(p.to_string())),
                 density: Some(spec.material.density),
                 friction: Some(spec.material.friction),
                 restitution: Some(spec.material.restitution),
