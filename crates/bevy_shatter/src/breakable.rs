@@ -127,7 +127,8 @@ impl Breakable {
                 "break force must be > 0, got {s}"
             )));
         }
-        let mesh = convert::tri_mesh(mesh).ok_or(BreakableError::NotATriangleMesh)?;
+        let model = convert::model(mesh).ok_or(BreakableError::NotATriangleMesh)?;
+        let mesh = &model.mesh;
         if self.method == MethodKind::Grid {
             let (lo, hi) = mesh.positions.iter().fold(
                 (glam::DVec3::splat(f64::MAX), glam::DVec3::splat(f64::MIN)),
@@ -169,8 +170,10 @@ impl Breakable {
                 placement: geom::Placement::Interior,
             },
         };
-        geom::fracture(
-            &mesh,
+        // With the mesh's UVs and normals: the entity's own (textured) material draws
+        // the fragments' surface as it drew the whole.
+        geom::fracture_model(
+            &model,
             &geom::FractureParams {
                 method,
                 seed: self.seed,

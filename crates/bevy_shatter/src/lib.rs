@@ -6,6 +6,10 @@
 //! whose bonds break splits into islands. The game's own colliders hit the debris and
 //! the debris hits them.
 //!
+//! Fragments are drawn with the entity's own material: their surface keeps the mesh's
+//! `UV_0` and normals (so a textured wall's debris shows its texture), and their cut
+//! faces, with generated UVs, take the plugin's interior material.
+//!
 //! The plugin adds no camera, light or UI, and not the physics engine either: add
 //! avian's `PhysicsPlugins` yourself.
 //!

@@ -112,11 +112,12 @@ pub(crate) fn spawn_fragments(
             Visibility::default(),
             ChildOf(body),
         ));
-        if let Some(mesh) = convert::bevy_mesh(&frag.mesh, |t| !frag.interior[t]) {
+        let corners = &frag.corners;
+        if let Some(mesh) = convert::bevy_mesh(&frag.mesh, corners, true, |t| !frag.interior[t]) {
             e.insert((Mesh3d(meshes.add(mesh)), MeshMaterial3d(surface.clone())));
         }
         let id = e.id();
-        if let Some(mesh) = convert::bevy_mesh(&frag.mesh, |t| frag.interior[t]) {
+        if let Some(mesh) = convert::bevy_mesh(&frag.mesh, corners, false, |t| frag.interior[t]) {
             commands.spawn((
                 Mesh3d(meshes.add(mesh)),
                 MeshMaterial3d(interior.clone()),

@@ -313,3 +313,55 @@ fn bad_input_is_reported_as_a_message_not_a_panic() {
 
 #[derive(Resource, Default)]
 struct Failures(Vec<BreakableError>);
+
+/// A textured wall's fragments keep its texture mapping: the surface faces carry the
+/// wall's own UVs (a Bevy cuboid maps each face onto [0, 1]²), so the entity's material
+/// draws the debris as it drew the wall; cut faces get generated UVs too.
+#[test]
+fn fragments_keep_the_meshs_uvs_for_the_entitys_material() {
+    let mut app = app();
+    let object = wall(
+        &mut app,
+        Breakable {
+            method: MethodKind::Voronoi,
+            pieces: 12,
+            ..Breakable::default()
+        },
+        0.75,
+    );
+    fractured(&mut app, object);
+    let world = app.world_mut();
+    let mut q = world.query::<(&Mesh3d, Option<&bevy_shatter::Fragment>)>();
+    let handles: Vec<(Handle<Mesh>, bool)> = q
+        .iter(world)
+        .map(|(m, f)| (m.0.clone(), f.is_some()))
+        .collect();
+    let meshes = world.resource::<Assets<Mesh>>();
+    let (mut surface, mut spread) = (0, Vec::new());
+    for (handle, is_surface) in handles {
+        let mesh = meshes.get(&handle).unwrap();
+        let n = mesh.attribute(Mesh::ATTRIBUTE_POSITION).unwrap().len();
+        let Some(bevy::mesh::VertexAttributeValues::Float32x2(uv)) =
+            mesh.attribute(Mesh::ATTRIBUTE_UV_0)
+        else {
+            panic!("a fragment mesh without UVs");
+        };
+        assert_eq!(uv.len(), n);
+        assert!(uv.iter().flatten().all(|x| x.is_finite()));
+        if is_surface {
+            surface += 1;
+            assert!(
+                uv.iter()
+                    .flatten()
+                    .all(|x| (-1e-4..=1.0 + 1e-4).contains(x)),
+                "a surface UV outside the cuboid's [0, 1]"
+            );
+            spread.extend(uv.iter().map(|p| p[0]));
+        }
+    }
+    assert!(surface >= 8, "{surface} surface meshes");
+    let (lo, hi) = spread
+        .iter()
+        .fold((f32::MAX, f32::MIN), |(a, b), &x| (a.min(x), b.max(x)));
+    assert!(hi - lo > 0.9, "the UVs cover the texture: {lo}..{hi}");
+}
