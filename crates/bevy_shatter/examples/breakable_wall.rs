@@ -4,21 +4,74 @@
 //! enough hit breaks bonds and the wall falls apart into bodies of the game's avian
 //! physics. The camera, the light and the ground are the game's; the plugin adds none.
 //! Run with `cargo run -p bevy_shatter --example breakable_wall --features window`.
+//!
+//! With `BREAKABLE_WALL_SHOT=out.png` it plays itself instead: one ball at the wall's
+//! middle after a second, a screenshot a second and a half later, then it quits (how
+//! the example is looked at under Xvfb).
 
 use avian3d::prelude::*;
 use bevy::prelude::*;
+use bevy::render::view::screenshot::{Screenshot, save_to_disk};
 use bevy_shatter::{BondBroken, Breakable, ShatterPlugin};
 
 fn main() {
-    App::new()
-        .add_plugins((
-            DefaultPlugins,
-            PhysicsPlugins::default(),
-            ShatterPlugin::default(),
-        ))
-        .add_systems(Startup, setup)
-        .add_systems(Update, (shoot, report))
-        .run();
+    let mut app = App::new();
+    app.add_plugins((
+        DefaultPlugins,
+        PhysicsPlugins::default(),
+        ShatterPlugin::default(),
+    ))
+    .add_systems(Startup, setup)
+    .add_systems(Update, (shoot, report));
+    if let Some(path) = std::env::var_os("BREAKABLE_WALL_SHOT") {
+        app.insert_resource(AutoShot {
+            path: path.into(),
+            frame: 0,
+        })
+        .add_systems(Update, auto_shot);
+    }
+    app.run();
+}
+
+/// The self-playing mode's state.
+#[derive(Resource)]
+struct AutoShot {
+    path: std::path::PathBuf,
+    frame: u32,
+}
+
+/// Fires one ball at the wall at frame 60 (a second at 60 fps), screenshots at frame
+/// 150, quits once the file is written.
+fn auto_shot(
+    mut commands: Commands,
+    mut shot: ResMut<AutoShot>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+    mut exit: MessageWriter<AppExit>,
+) {
+    shot.frame += 1;
+    match shot.frame {
+        60 => {
+            let from = Vec3::new(0.0, 2.0, 8.0);
+            let to = Vec3::new(0.0, 0.9, 0.0);
+            spawn_ball(
+                &mut commands,
+                &mut meshes,
+                &mut materials,
+                from,
+                (to - from).normalize(),
+            );
+        }
+        150 => {
+            commands
+                .spawn(Screenshot::primary_window())
+                .observe(save_to_disk(shot.path.clone()));
+        }
+        f if f > 150 && shot.path.is_file() || f > 2000 => {
+            exit.write(AppExit::Success);
+        }
+        _ => {}
+    }
 }
 
 fn setup(
@@ -78,6 +131,23 @@ fn shoot(
     else {
         return;
     };
+    spawn_ball(
+        &mut commands,
+        &mut meshes,
+        &mut materials,
+        ray.origin,
+        *ray.direction,
+    );
+}
+
+/// A steel ball at `from`, flying along `dir` (unit) at 40 m/s.
+fn spawn_ball(
+    commands: &mut Commands,
+    meshes: &mut Assets<Mesh>,
+    materials: &mut Assets<StandardMaterial>,
+    from: Vec3,
+    dir: Vec3,
+) {
     commands.spawn((
         RigidBody::Dynamic,
         Collider::sphere(0.15),
@@ -85,8 +155,8 @@ fn shoot(
         SweptCcd::default(),
         Mesh3d(meshes.add(Sphere::new(0.15))),
         MeshMaterial3d(materials.add(Color::srgb(0.8, 0.8, 0.85))),
-        Transform::from_translation(ray.origin),
-        LinearVelocity(*ray.direction * 40.0),
+        Transform::from_translation(from),
+        LinearVelocity(dir * 40.0),
     ));
 }
 
