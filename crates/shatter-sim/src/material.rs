@@ -130,8 +130,8 @@ impl MaterialPreset {
     }
 
     /// The preset a material was made from: the one whose fixed properties match (the
-    /// default method and pattern, the stress strengths, wear and roughness), which no
-    /// scene key overrides; density, friction, restitution and strength may have been.
+    /// default method and pattern, the stress strengths and wear), which no scene key
+    /// overrides; density, friction, restitution, strength and roughness may have been.
     ///
     /// ```
     /// use shatter_sim::{Material, MaterialPreset};
@@ -143,7 +143,7 @@ impl MaterialPreset {
     pub fn of(m: &Material) -> Option<MaterialPreset> {
         let fixed = |q: &Material| {
             let strengths = [q.compression, q.tension, q.shear, q.wear];
-            (q.method, q.pattern, strengths, q.roughness)
+            (q.method, q.pattern, strengths)
         };
         MaterialPreset::ALL
             .iter()

@@ -117,3 +117,68 @@ fn a_saved_scene_keeps_each_objects_material() {
         assert_eq!(a.material, b.material, "{}", a.name);
     }
 }
+
+/// Triangles of object 0's fragments in a one-object scene.
+fn triangles_of(object: &str) -> usize {
+    let text = format!("[world]\nground = false\n\n[[objects]]\n{object}\n");
+    let world = Scene::parse(&text)
+        .unwrap_or_else(|e| panic!("{e}\n{text}"))
+        .build(None)
+        .unwrap();
+    let id = world.object_ids()[0];
+    let fracture = world.object_fracture(id).unwrap();
+    fracture
+        .fragments
+        .iter()
+        .map(|f| f.mesh.triangles.len())
+        .sum()
+}
+
+/// Issue 16: the cut faces' roughness is a scene setting of each object, over its
+/// material's: glass made rough, stone made flat, and bad values named.
+#[test]
+fn roughness_keys_make_cut_faces_rough_or_flat() {
+    let glass = "shape = \"cube\"\nmaterial = \"glass\"\npattern = \"uniform\"\npieces = 8";
+    let stone = "shape = \"cube\"\nmaterial = \"stone\"\npieces = 8";
+    let flat_glass = triangles_of(glass);
+    let rough_glass = triangles_of(&format!("{glass}\nroughness = 0.02"));
+    assert!(
+        rough_glass > 2 * flat_glass,
+        "{rough_glass} vs {flat_glass}"
+    );
+    let rough_stone = triangles_of(stone);
+    let flat_stone = triangles_of(&format!("{stone}\nroughness = 0"));
+    assert!(
+        rough_stone > 2 * flat_stone,
+        "{rough_stone} vs {flat_stone}"
+    );
+    // Finer noise, more octaves: more detail.
+    let fine = triangles_of(&format!(
+        "{glass}\nroughness = 0.02\nroughness_frequency = 20.0\nroughness_octaves = 6"
+    ));
+    assert!(fine != rough_glass, "frequency and octaves changed nothing");
+    for (bad, what) in [
+        ("roughness = -0.1", "objects[0].roughness"),
+        (
+            "roughness_frequency = 0.0",
+            "objects[0].roughness_frequency",
+        ),
+        ("roughness_octaves = 9", "objects[0].roughness_octaves"),
+    ] {
+        let e = err(&format!("[[objects]]\n{stone}\n{bad}\n"));
+        assert!(e.contains(what) && e.contains("line 5"), "{bad}: {e}");
+    }
+    // Saved and loaded, an object keeps its own roughness and its preset.
+    let text = format!("[[objects]]\n{glass}\nroughness = 0.03\nroughness_octaves = 5\n");
+    let world = Scene::parse(&text).unwrap().build(None).unwrap();
+    let saved = world.to_scene_toml().unwrap();
+    let again = Scene::parse(&saved).unwrap().build(None).unwrap();
+    let id = world.object_ids()[0];
+    let (a, b) = (
+        world.object_spec(id).unwrap(),
+        again.object_spec(id).unwrap(),
+    );
+    assert_eq!(a.material, b.material);
+    assert_eq!(b.material.roughness.amplitude, f64::from(0.03f32));
+    assert_eq!(b.material.roughness.octaves, 5);
+}

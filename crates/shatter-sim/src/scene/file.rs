@@ -119,6 +119,15 @@ pub struct ObjectEntry {
     /// Fragments smaller than this (m, bounding-box diagonal) are not cut again.
     #[serde(default, deserialize_with = "values::opt_spanned_f32")]
     pub min_size: Option<Spanned<f32>>,
+    /// Rough cut faces: the largest displacement (m); 0 makes them flat (default: the
+    /// material's).
+    #[serde(default, deserialize_with = "values::opt_spanned_f32")]
+    pub roughness: Option<Spanned<f32>>,
+    /// Cycles per metre of the roughness's first octave (default: the material's).
+    #[serde(default, deserialize_with = "values::opt_spanned_f32")]
+    pub roughness_frequency: Option<Spanned<f32>>,
+    /// Octaves of the roughness's noise, 1 to 8 (default: the material's).
+    pub roughness_octaves: Option<Spanned<i64>>,
 }
 
 /// `[[projectiles]]`.

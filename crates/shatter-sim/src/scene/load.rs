@@ -309,6 +309,7 @@ fn object(ctx: &Ctx, key: &str, o: &ObjectEntry) -> Result<ObjectSpec, SimError>
     if let Some(r) = o.restitution {
         material.restitution = r;
     }
+    roughness(ctx, key, o, &mut material.roughness)?;
     let method = opt_word(ctx, &format!("{key}.method"), &o.method)?;
     let pattern = opt_word(ctx, &format!("{key}.pattern"), &o.pattern)?;
     let defaults = FractureParams::default();
@@ -428,6 +429,42 @@ fn object(ctx: &Ctx, key: &str, o: &ObjectEntry) -> Result<ObjectSpec, SimError>
     };
     spec.validate(key)?;
     Ok(spec)
+}
+
+/// The object's `roughness`, `roughness_frequency` and `roughness_octaves` over the
+/// material's roughness (a material without any, like glass, keeps its frequency of 4
+/// per metre and 3 octaves when only `roughness` is given).
+fn roughness(
+    ctx: &Ctx,
+    key: &str,
+    o: &ObjectEntry,
+    r: &mut shatter_geom::fracture::Roughness,
+) -> Result<(), SimError> {
+    if let Some(a) = &o.roughness {
+        let v = *a.get_ref();
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(SimError::invalid(
+                ctx.key(&format!("{key}.roughness"), a),
+                format!("must be a number of metres >= 0 (0: flat cut faces), got {v}"),
+            ));
+        }
+        r.amplitude = f64::from(v);
+    }
+    if let Some(f) = &o.roughness_frequency {
+        r.frequency = f64::from(positive(ctx, &format!("{key}.roughness_frequency"), f)?);
+    }
+    let max = shatter_geom::fracture::Roughness::MAX_OCTAVES;
+    if let Some(n) = &o.roughness_octaves {
+        let v = *n.get_ref();
+        if !(1..=i64::from(max)).contains(&v) {
+            return Err(SimError::invalid(
+                ctx.key(&format!("{key}.roughness_octaves"), n),
+                format!("must be 1..={max}, got {v}"),
+            ));
+        }
+        r.octaves = v as u32;
+    }
+    Ok(())
 }
 
 /// The object's runtime-fracture keys: `fracture`, `fracture_impulse`, `depth`,

@@ -52,6 +52,10 @@ impl World {
                 }
             };
             let (x, y, z) = spec.rotation.to_euler(EulerRot::XYZ);
+            let preset = MaterialPreset::of(&spec.material);
+            let rough = spec.material.roughness;
+            let own_rough =
+                (preset.map(|p| p.material().roughness) != Some(rough)).then_some(rough);
             file.objects.push(ObjectEntry {
                 name: Some(spec.name.clone()),
                 shape,
@@ -79,7 +83,7 @@ impl World {
                 seed: Some(params.seed),
                 // The preset, then what the object overrides: without it a glass pane
                 // came back as stone (its strengths, wear and rough faces).
-                material: MaterialPreset::of(&spec.material).map(|p| sp(p.to_string())),
+                material: preset.map(|p| sp(p.to_string())),
                 density: Some(spec.material.density),
                 friction: Some(spec.material.friction),
                 restitution: Some(spec.material.restitution),
@@ -95,6 +99,11 @@ impl World {
                 fracture_impulse: spec.runtime.impulse.map(sp),
                 depth: Some(sp(i64::from(spec.runtime.depth))),
                 min_size: Some(sp(spec.runtime.min_size)),
+                // Only a roughness of the object's own (the keys read in f32, which
+                // would round a preset's f64 values).
+                roughness: own_rough.map(|r| sp(r.amplitude as f32)),
+                roughness_frequency: own_rough.map(|r| sp(r.frequency as f32)),
+                roughness_octaves: own_rough.map(|r| sp(i64::from(r.octaves))),
             });
         }
         for (at, action) in &self.schedule {
