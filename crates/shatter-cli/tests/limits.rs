@@ -208,12 +208,12 @@ fn scenes_too_big_for_the_machine_are_refused_before_building() {
         (
             "pieces.toml",
             "[[objects]]\nshape = \"bird\"\nmethod = \"voronoi\"\npieces = 10000000\n",
-            "objects[0].pieces = 10000000: 10,000,000 Voronoi cells need about",
+            "objects[0].pieces = 10000000: 10,000,000 Voronoi cells with rough cut faces need about",
         ),
         (
             "vertices.toml",
             "[[objects]]\nshape = \"cube\"\nmethod = \"tetra\"\nrandom_vertices = 10000000\n",
-            "objects[0].random_vertices = 10000000: a tetra fracture of 10,000,024 points need about",
+            "objects[0].random_vertices = 10000000: a tetra fracture of 10,000,024 points with rough cut faces need about",
         ),
         (
             "dt.toml",
