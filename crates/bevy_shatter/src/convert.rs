@@ -49,23 +49,22 @@ pub(crate) fn model(mesh: &Mesh) -> Option<Model> {
     {
         return None;
     }
-    let n = positions.len();
-    let uv = match mesh.attribute(Mesh::ATTRIBUTE_UV_0) {
-        Some(VertexAttributeValues::Float32x2(uv)) if uv.len() == n => Some(
+    // A vertex attribute as per-corner values, when there is one per vertex.
+    fn per_corner<T: Copy>(values: &[T], n: usize, triangles: &[[u32; 3]]) -> Option<Vec<[T; 3]>> {
+        (values.len() == n).then(|| {
             triangles
                 .iter()
-                .map(|t| t.map(|i| uv[i as usize]))
-                .collect(),
-        ),
+                .map(|t| t.map(|i| values[i as usize]))
+                .collect()
+        })
+    }
+    let n = positions.len();
+    let uv = match mesh.attribute(Mesh::ATTRIBUTE_UV_0) {
+        Some(VertexAttributeValues::Float32x2(uv)) => per_corner(uv, n, &triangles),
         _ => None,
     };
     let normal = match mesh.attribute(Mesh::ATTRIBUTE_NORMAL) {
-        Some(VertexAttributeValues::Float32x3(normals)) if normals.len() == n => Some(
-            triangles
-                .iter()
-                .map(|t| t.map(|i| normals[i as usize]))
-                .collect(),
-        ),
+        Some(VertexAttributeValues::Float32x3(normals)) => per_corner(normals, n, &triangles),
         _ => None,
     };
     let count = triangles.len();

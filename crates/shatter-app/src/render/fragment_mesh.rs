@@ -63,21 +63,10 @@ pub fn fragment_parts(
     by_material
         .into_iter()
         .map(|(m, tris)| {
-            let n = tris.len() * 3;
-            let mut mesh = FlatMesh {
-                positions: Vec::with_capacity(n),
-                normals: Vec::with_capacity(n),
-                colors: Vec::with_capacity(n),
-                uvs: Vec::with_capacity(if corners.uv.is_some() { n } else { 0 }),
-            };
+            let mut mesh = FlatMesh::for_triangles(tris.len(), corners.uv.is_some());
             for t in tris {
                 let [a, b, c] = fragment.mesh.triangle(t);
-                let face = (b - a)
-                    .cross(c - a)
-                    .try_normalize()
-                    .unwrap_or(glam::DVec3::Y)
-                    .as_vec3()
-                    .to_array();
+                let face = face_normal(a, b, c);
                 let interior = fragment.interior.get(t).copied().unwrap_or(false);
                 let normals = match &corners.normal {
                     Some(list) if !interior => list[t],
@@ -99,6 +88,30 @@ pub fn fragment_parts(
         .collect()
 }
 
+impl FlatMesh {
+    /// Empty, with room for `triangles` triangles (and their UVs when `uvs`).
+    fn for_triangles(triangles: usize, uvs: bool) -> FlatMesh {
+        let n = 3 * triangles;
+        FlatMesh {
+            positions: Vec::with_capacity(n),
+            normals: Vec::with_capacity(n),
+            colors: Vec::with_capacity(n),
+            uvs: Vec::with_capacity(if uvs { n } else { 0 }),
+        }
+    }
+}
+
+/// The unit normal of triangle `a b c` (counter-clockwise from outside); +Y for a
+/// degenerate one rather than NaN.
+fn face_normal(a: glam::DVec3, b: glam::DVec3, c: glam::DVec3) -> [f32; 3] {
+    (b - a)
+        .cross(c - a)
+        .try_normalize()
+        .unwrap_or(glam::DVec3::Y)
+        .as_vec3()
+        .to_array()
+}
+
 /// The colour of interior faces for a surface colour (linear RGB in `[0, 1]`).
 pub fn interior_color(surface: [f32; 3]) -> [f32; 3] {
     // Darker, and pulled slightly towards a neutral grey so cut faces read as raw material.
@@ -116,26 +129,17 @@ pub fn flat_mesh(fragment: &Fragment, color: [f32; 3]) -> FlatMesh {
 /// Flat-shaded triangles of any mesh; `interior[t]` marks the triangles drawn in the
 /// interior shade (missing entries are surface).
 pub fn flat_trimesh(mesh: &TriMesh, interior: &[bool], color: [f32; 3]) -> FlatMesh {
-    let n = mesh.triangles.len() * 3;
-    let mut out = FlatMesh {
-        positions: Vec::with_capacity(n),
-        normals: Vec::with_capacity(n),
-        colors: Vec::with_capacity(n),
-        uvs: Vec::new(),
-    };
+    let mut out = FlatMesh::for_triangles(mesh.triangles.len(), false);
     let surface = color;
     let inner = interior_color(color);
     for t in 0..mesh.triangles.len() {
         let [a, b, c] = mesh.triangle(t);
-        let normal = (b - a)
-            .cross(c - a)
-            .try_normalize()
-            .unwrap_or(glam::DVec3::Y);
+        let normal = face_normal(a, b, c);
         let is_interior = interior.get(t).copied().unwrap_or(false);
         let col = if is_interior { inner } else { surface };
         for p in [a, b, c] {
             out.positions.push(p.as_vec3().to_array());
-            out.normals.push(normal.as_vec3().to_array());
+            out.normals.push(normal);
             out.colors.push([col[0], col[1], col[2], 1.0]);
         }
     }

@@ -130,35 +130,33 @@ impl Piece {
         let Some(mut sets) = sets else {
             return;
         };
-        let mut collapsed = self.clone();
-        collapsed.tris.clear();
-        collapsed.tags.clear();
-        for (t, &tag) in self.tris.iter().zip(&self.tags) {
-            let t = t.map(|i| sets.find(i as usize) as u32);
-            if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
-                collapsed.tris.push(t);
-                collapsed.tags.push(tag);
-            }
-        }
-        if !collapsed.tris.is_empty() && collapsed.is_closed() {
-            collapsed.compact();
-            *self = collapsed;
+        let (tris, tags) = self.remapped_triangles(|i| sets.find(i as usize) as u32);
+        if !tris.is_empty() && closed(&tris) {
+            self.tris = tris;
+            self.tags = tags;
+            self.compact();
         }
     }
 
     /// Every directed edge once, with its reverse once: closed, and a 2-manifold by
     /// edges.
     pub fn is_closed(&self) -> bool {
-        let mut count: FastMap<(u32, u32), u32> = FastMap::default();
-        count.reserve(3 * self.tris.len());
-        for tri in &self.tris {
-            for k in 0..3 {
-                *count.entry((tri[k], tri[(k + 1) % 3])).or_default() += 1;
+        closed(&self.tris)
+    }
+
+    /// The triangles with their vertices mapped by `remap`, less those that then repeat
+    /// a vertex, and their tags.
+    fn remapped_triangles(&self, mut remap: impl FnMut(u32) -> u32) -> (Vec<[u32; 3]>, Vec<u64>) {
+        let mut tris = Vec::with_capacity(self.tris.len());
+        let mut tags = Vec::with_capacity(self.tags.len());
+        for (t, &tag) in self.tris.iter().zip(&self.tags) {
+            let t = t.map(&mut remap);
+            if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
+                tris.push(t);
+                tags.push(tag);
             }
         }
-        count
-            .iter()
-            .all(|(&(a, b), &n)| n == 1 && count.get(&(b, a)) == Some(&1))
+        (tris, tags)
     }
 
     /// Merges vertices at exactly equal positions (see [`Piece::weld`]).
@@ -181,17 +179,7 @@ impl Piece {
             return;
         }
         self.pos = pos;
-        let mut tris = Vec::with_capacity(self.tris.len());
-        let mut tags = Vec::with_capacity(self.tags.len());
-        for (t, &tag) in self.tris.iter().zip(&self.tags) {
-            let t = t.map(|i| remap[i as usize]);
-            if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
-                tris.push(t);
-                tags.push(tag);
-            }
-        }
-        self.tris = tris;
-        self.tags = tags;
+        (self.tris, self.tags) = self.remapped_triangles(|i| remap[i as usize]);
         self.compact();
     }
 
@@ -350,6 +338,20 @@ impl Piece {
 }
 
 /// Length of the bounding-box diagonal of a piece (1 for an empty one).
+/// Whether every directed edge of `tris` is used once, and its reverse once.
+fn closed(tris: &[[u32; 3]]) -> bool {
+    let mut count: FastMap<(u32, u32), u32> = FastMap::default();
+    count.reserve(3 * tris.len());
+    for tri in tris {
+        for k in 0..3 {
+            *count.entry((tri[k], tri[(k + 1) % 3])).or_default() += 1;
+        }
+    }
+    count
+        .iter()
+        .all(|(&(a, b), &n)| n == 1 && count.get(&(b, a)) == Some(&1))
+}
+
 pub(crate) fn mesh_scale(p: &Piece) -> f64 {
     if p.pos.is_empty() {
         return 1.0;
