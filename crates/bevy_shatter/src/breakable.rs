@@ -128,46 +128,18 @@ impl Breakable {
             )));
         }
         let model = convert::model(mesh).ok_or(BreakableError::NotATriangleMesh)?;
-        let mesh = &model.mesh;
-        if self.method == MethodKind::Grid {
-            let (lo, hi) = mesh.positions.iter().fold(
-                (glam::DVec3::splat(f64::MAX), glam::DVec3::splat(f64::MIN)),
-                |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-            );
-            let mut f = shatter_sim::testing::box_grid_fracture(self.grid, hi - lo);
-            let offset = (lo + hi) / 2.0;
-            for frag in &mut f.fragments {
-                for p in &mut frag.mesh.positions {
-                    *p += offset;
-                }
-                for piece in &mut frag.convex_pieces {
-                    for p in piece {
-                        *p += offset;
-                    }
-                }
-                frag.centroid += offset;
-            }
-            for b in &mut f.bonds {
-                b.centroid += offset;
-            }
-            return Ok(f);
-        }
         let method = match self.method {
-            MethodKind::Voronoi => geom::Method::Voronoi {
-                pieces: self.pieces as usize,
-                pattern: self.pattern,
-                impact: None,
-                seeds: None,
-            },
+            MethodKind::Voronoi => geom::Method::voronoi(self.pieces as usize, self.pattern),
             MethodKind::Slice => geom::Method::Slice {
                 pieces: self.pieces as usize,
                 planes: None,
             },
-            _ => geom::Method::Tetra {
-                random_vertices: self.pieces as usize,
-                skip: 0,
-                center: false,
-                placement: geom::Placement::Interior,
+            MethodKind::Tetra => {
+                geom::Method::tetra(self.pieces as usize, geom::Placement::Interior)
+            }
+            MethodKind::Grid => geom::Method::Grid {
+                cells: self.grid,
+                voids: Vec::new(),
             },
         };
         // With the mesh's UVs and normals: the entity's own (textured) material draws

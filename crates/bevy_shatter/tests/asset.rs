@@ -13,7 +13,7 @@ use bevy_shatter::{
     Breakable, BreakableError, FractureAsset, FractureFailed, Fractured, ShatterObject,
     ShatterPlugin, ShatterSystems,
 };
-use shatter_geom::fracture::{FractureParams, Method, Pattern, fracture};
+use shatter_geom::fracture::{FractureParams, Method, Pattern, Seeds, fracture};
 use shatter_geom::io::{
     BreakThresholds, ExportObject, FractureAssetMeta, read_fracture, save_fracture_glb, save_glb,
 };
@@ -86,10 +86,7 @@ fn a_prefractured_glb_loads_with_its_bonds_anchors_and_break_force() {
     let dir = tempfile::tempdir().unwrap();
     let params = FractureParams {
         method: Method::Voronoi {
-            pieces: 16,
-            pattern: Pattern::Uniform,
-            impact: None,
-            seeds: None,
+            seeds: Seeds::count(16),
         },
         seed: 5,
     };

@@ -81,16 +81,33 @@ fn grid_cuts_the_scaled_cube_into_its_cells() {
 }
 
 #[test]
-fn grid_refuses_a_mesh_that_is_not_the_cube() {
+fn grid_cuts_any_mesh_into_cells_and_its_flag_needs_the_method() {
     let dir = tempfile::tempdir().expect("temp dir");
-    shatter(
+    let run = shatter(
         dir.path(),
-        &["fracture", "--shape", "sphere", "--method", "grid"],
-    )
-    .bad_input(&["--method grid cuts a box"]);
+        &[
+            "fracture", "--shape", "sphere", "--method", "grid", "--grid", "3,3,3", "--json",
+        ],
+    );
+    let j = run.json();
+    // The sphere's box in 27 cells, its corners cut away: fewer fragments than cells.
+    let n = j["fragments"].as_u64().expect("a count");
+    assert!((8..=27).contains(&n), "{n} fragments");
+    let (a, b) = (
+        j["mesh_volume"].as_f64().expect("a number"),
+        j["fragments_volume"].as_f64().expect("a number"),
+    );
+    assert!((a - b).abs() < 1e-9 * a, "volumes {a} and {b}");
     shatter(
         dir.path(),
         &["fracture", "--shape", "cube", "--grid", "2,2,2"],
     )
     .bad_input(&["--grid applies to --method grid"]);
+    shatter(
+        dir.path(),
+        &[
+            "fracture", "--shape", "cube", "--method", "grid", "--grid", "0,2,2",
+        ],
+    )
+    .bad_input(&["--grid"]);
 }

@@ -6,7 +6,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use shatter_geom::fracture::{
-    FractureParams, Method, Pattern, Placement, Roughness, fracture, roughen,
+    FractureParams, Method, Pattern, Placement, Roughness, Seeds, fracture, roughen,
 };
 use shatter_geom::shapes;
 
@@ -14,10 +14,7 @@ fn bench(c: &mut Criterion) {
     let bird = shapes::bird();
     let voronoi = FractureParams {
         method: Method::Voronoi {
-            pieces: 100,
-            pattern: Pattern::Uniform,
-            impact: None,
-            seeds: None,
+            seeds: Seeds::count(100),
         },
         seed: 1,
     };
@@ -35,10 +32,11 @@ fn bench(c: &mut Criterion) {
         .expect("the bird has vertices");
     let radial = FractureParams {
         method: Method::Voronoi {
-            pieces: 50,
-            pattern: Pattern::Radial,
-            impact: Some(front),
-            seeds: None,
+            seeds: Seeds::Pattern {
+                count: 50,
+                pattern: Pattern::Radial,
+                impact: Some(front),
+            },
         },
         seed: 1,
     };

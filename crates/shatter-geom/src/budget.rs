@@ -25,6 +25,7 @@
 //! degeneracy), and are not tested, as tests are not timed. They are estimates for
 //! *refusing* requests far beyond the machine, not predictions to the percent.
 
+use crate::TriMesh;
 use std::fmt;
 
 /// A shatter process's own resident set before any work (the binary, the thread pool's
@@ -72,6 +73,10 @@ pub const SLICE_BYTES_PER_PIECE: f64 = 12_000.0;
 /// Seconds per slice piece and per plane (every plane is tried on every piece): the same
 /// run took 0.3 s of CPU for 1,026 pieces × 48 planes.
 pub const SLICE_SECONDS_PER_PIECE_PLANE: f64 = 6.0e-6;
+/// Bytes per brick of a box's grid fracture (a 12-triangle box, its tags and bonds).
+pub const GRID_BYTES_PER_BRICK: f64 = 2_000.0;
+/// Seconds per brick of a box's grid fracture.
+pub const GRID_SECONDS_PER_BRICK: f64 = 2.0e-6;
 
 /// What a computation needs: peak memory in bytes and wall-clock seconds.
 ///
@@ -138,6 +143,31 @@ impl Estimate {
         Estimate {
             bytes: pieces * SLICE_BYTES_PER_PIECE + triangles as f64 * BYTES_PER_TRIANGLE,
             seconds: pieces * planes as f64 * SLICE_SECONDS_PER_PIECE_PLANE,
+        }
+    }
+
+    /// The grid fracture of a mesh of `triangles` triangles into `cells` cells: bricks
+    /// when the mesh is a box (`boxed`, see [`is_box`]), else a slice by the grid's
+    /// planes, each plane tried on every piece.
+    ///
+    /// ```
+    /// use shatter_geom::budget::Estimate;
+    /// let bricks = Estimate::grid_fracture([40, 25, 20], 12, true);
+    /// let clipped = Estimate::grid_fracture([40, 25, 20], 12, false);
+    /// assert!(bricks.seconds < clipped.seconds && bricks.bytes < clipped.bytes);
+    /// ```
+    pub fn grid_fracture(cells: [u32; 3], triangles: u64, boxed: bool) -> Estimate {
+        let n: f64 = cells.iter().map(|&c| f64::from(c)).product();
+        if boxed {
+            return Estimate {
+                bytes: n * GRID_BYTES_PER_BRICK,
+                seconds: n * GRID_SECONDS_PER_BRICK,
+            };
+        }
+        let planes: f64 = cells.iter().map(|&c| f64::from(c.max(1) - 1)).sum();
+        Estimate {
+            bytes: n * SLICE_BYTES_PER_PIECE + triangles as f64 * BYTES_PER_TRIANGLE,
+            seconds: n * planes * SLICE_SECONDS_PER_PIECE_PLANE,
         }
     }
 
@@ -418,6 +448,21 @@ impl fmt::Display for Estimate {
             format_duration(self.seconds)
         )
     }
+}
+
+/// Whether `mesh` fills its bounding box (its volume that of the box to 1e-12): a box,
+/// which the grid method cuts into bricks without clipping.
+///
+/// ```
+/// use shatter_geom::{budget::is_box, shapes, DVec3};
+/// assert!(is_box(&shapes::cube().transformed(DVec3::new(4.0, 2.5, 0.4), DVec3::ZERO)));
+/// assert!(!is_box(&shapes::sphere(16, 8)));
+/// ```
+pub fn is_box(mesh: &TriMesh) -> bool {
+    let Some((lo, hi)) = mesh.bounds() else {
+        return false;
+    };
+    crate::fracture::fills_box(mesh.signed_volume(), lo, hi)
 }
 
 #[cfg(test)]

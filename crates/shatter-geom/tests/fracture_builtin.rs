@@ -6,17 +6,18 @@
 mod shapes;
 
 use shapes::check_fracture;
-use shatter_geom::fracture::{FractureError, FractureParams, Method, Pattern, fracture};
+use shatter_geom::fracture::{FractureError, FractureParams, Method, Pattern, Seeds, fracture};
 use shatter_geom::mesh::MeshError;
 use shatter_geom::{DVec3, TriMesh, shapes as builtin};
 
 fn voronoi(pieces: usize, pattern: Pattern, seed: u64) -> FractureParams {
     FractureParams {
         method: Method::Voronoi {
-            pieces,
-            pattern,
-            impact: None,
-            seeds: None,
+            seeds: Seeds::Pattern {
+                count: pieces,
+                pattern,
+                impact: None,
+            },
         },
         seed,
     }
@@ -134,10 +135,7 @@ fn bad_parameters_are_refused() {
     );
     let bad_seed = FractureParams {
         method: Method::Voronoi {
-            pieces: 3,
-            pattern: Pattern::Uniform,
-            impact: None,
-            seeds: Some(vec![DVec3::ZERO, DVec3::new(f64::INFINITY, 0.0, 0.0)]),
+            seeds: Seeds::Points(vec![DVec3::ZERO, DVec3::new(f64::INFINITY, 0.0, 0.0)]),
         },
         seed: 0,
     };

@@ -7,15 +7,16 @@ mod shapes;
 
 use shapes::*;
 use shatter_geom::DVec3;
-use shatter_geom::fracture::{Fracture, FractureParams, Method, Pattern, fracture};
+use shatter_geom::fracture::{Fracture, FractureParams, Method, Pattern, Seeds, fracture};
 
 fn voronoi(pieces: usize, pattern: Pattern, seed: u64) -> FractureParams {
     FractureParams {
         method: Method::Voronoi {
-            pieces,
-            pattern,
-            impact: None,
-            seeds: None,
+            seeds: Seeds::Pattern {
+                count: pieces,
+                pattern,
+                impact: None,
+            },
         },
         seed,
     }
@@ -24,10 +25,7 @@ fn voronoi(pieces: usize, pattern: Pattern, seed: u64) -> FractureParams {
 fn seeds(list: Vec<DVec3>) -> FractureParams {
     FractureParams {
         method: Method::Voronoi {
-            pieces: 0,
-            pattern: Pattern::Uniform,
-            impact: None,
-            seeds: Some(list),
+            seeds: Seeds::Points(list),
         },
         seed: 0,
     }
@@ -320,10 +318,11 @@ fn radial_pattern_is_dense_near_the_impact() {
     let impact = DVec3::new(0.5, 0.5, 0.1);
     let params = FractureParams {
         method: Method::Voronoi {
-            pieces: 60,
-            pattern: Pattern::Radial,
-            impact: Some(impact),
-            seeds: None,
+            seeds: Seeds::Pattern {
+                count: 60,
+                pattern: Pattern::Radial,
+                impact: Some(impact),
+            },
         },
         seed: 5,
     };

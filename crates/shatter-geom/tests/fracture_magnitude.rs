@@ -5,16 +5,13 @@
 #![allow(clippy::unwrap_used)]
 
 use shatter_geom::fracture::{
-    Fracture, FractureError, FractureParams, Method, Pattern, Placement, fracture,
+    Fracture, FractureError, FractureParams, Method, Pattern, Placement, Seeds, fracture,
 };
 use shatter_geom::{DVec3, TriMesh, shapes};
 
 fn voronoi(pieces: usize) -> Method {
     Method::Voronoi {
-        pieces,
-        pattern: Pattern::Uniform,
-        impact: None,
-        seeds: None,
+        seeds: Seeds::count(pieces),
     }
 }
 
@@ -249,10 +246,7 @@ fn given_seeds_planes_and_impact_points_are_mapped_into_the_frame() {
         })
         .collect();
     let method = Method::Voronoi {
-        pieces: 0,
-        pattern: Pattern::Uniform,
-        impact: None,
-        seeds: Some(seeds),
+        seeds: Seeds::Points(seeds),
     };
     let fr = run(&cube, &method).unwrap();
     assert_eq!(fr.fragments.len(), 8);
@@ -276,10 +270,11 @@ fn given_seeds_planes_and_impact_points_are_mapped_into_the_frame() {
     assert!(close(fr.fragments[0].volume, 0.5e-200, 1e-9));
     // The radial pattern's impact point: the same at 1e-50 as at unit size.
     let radial = |scale: f64| Method::Voronoi {
-        pieces: 30,
-        pattern: Pattern::Radial,
-        impact: Some(DVec3::splat(0.5 * scale)),
-        seeds: None,
+        seeds: Seeds::Pattern {
+            count: 30,
+            pattern: Pattern::Radial,
+            impact: Some(DVec3::splat(0.5 * scale)),
+        },
     };
     let unit = run(&shapes::cube(), &radial(1.0)).unwrap();
     let small = run(
@@ -291,10 +286,7 @@ fn given_seeds_planes_and_impact_points_are_mapped_into_the_frame() {
     assert_eq!(unit.bonds.len(), small.bonds.len());
     // A seed too far for the frame is refused by name.
     let far = Method::Voronoi {
-        pieces: 0,
-        pattern: Pattern::Uniform,
-        impact: None,
-        seeds: Some(vec![DVec3::ZERO, DVec3::splat(1e300)]),
+        seeds: Seeds::Points(vec![DVec3::ZERO, DVec3::splat(1e300)]),
     };
     assert_eq!(
         run(&cube, &far).unwrap_err(),

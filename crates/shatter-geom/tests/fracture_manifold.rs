@@ -8,7 +8,7 @@
 mod shapes;
 
 use shapes::*;
-use shatter_geom::fracture::{FractureParams, Method, Pattern, fracture};
+use shatter_geom::fracture::{FractureParams, Method, Pattern, Seeds, fracture};
 use shatter_geom::{TriMesh, shapes as builtin};
 
 fn concave_meshes() -> Vec<(&'static str, TriMesh)> {
@@ -54,10 +54,11 @@ fn clustered_voronoi_of_concave_meshes_is_closed_2_manifolds() {
                 run(
                     &mesh,
                     Method::Voronoi {
-                        pieces,
-                        pattern,
-                        impact: None,
-                        seeds: None,
+                        seeds: Seeds::Pattern {
+                            count: pieces,
+                            pattern,
+                            impact: None,
+                        },
                     },
                     seed,
                     &format!("{name} voronoi {pattern:?} seed {seed}"),

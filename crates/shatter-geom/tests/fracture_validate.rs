@@ -7,7 +7,7 @@
 mod shapes;
 
 use shatter_geom::fracture::{
-    FractureParams, InvalidFracture, Method, Pattern, Placement, fracture,
+    FractureParams, InvalidFracture, Method, Pattern, Placement, Seeds, fracture,
 };
 use shatter_geom::{DVec3, TriMesh};
 
@@ -22,10 +22,11 @@ fn mesh(name: &str) -> TriMesh {
 
 fn method(name: &str) -> Method {
     let voronoi = |pattern| Method::Voronoi {
-        pieces: 20,
-        pattern,
-        impact: None,
-        seeds: None,
+        seeds: Seeds::Pattern {
+            count: 20,
+            pattern,
+            impact: None,
+        },
     };
     let tetra = |placement| Method::Tetra {
         random_vertices: 50,

@@ -403,7 +403,7 @@ fn every_corpus_model_is_repaired_and_fractures_into_closed_fragments() {
 }
 
 fn corpus_fractures(check_closed: bool) {
-    use shatter_geom::fracture::{self, FractureParams, Method, Pattern};
+    use shatter_geom::fracture::{self, FractureParams, Method, Seeds};
     use shatter_geom::mesh::repair::{RepairError, RepairOptions, repair};
     for e in LOADS {
         if NOT_IN_DEBUG.iter().any(|(f, _)| *f == e.file) {
@@ -433,10 +433,7 @@ fn corpus_fractures(check_closed: bool) {
         assert!((solid - report.volume).abs() <= 1e-9 * solid, "{}", e.file);
         for method in [
             Method::Voronoi {
-                pieces: 12,
-                pattern: Pattern::Uniform,
-                impact: None,
-                seeds: None,
+                seeds: Seeds::count(12),
             },
             Method::Slice {
                 pieces: 6,

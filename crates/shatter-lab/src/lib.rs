@@ -20,9 +20,10 @@
 //! ```
 //! use shatter_geom::fracture::Pattern;
 //! use shatter_geom::shapes::Shape;
-//! use shatter_lab::fracture::{FractureConfig, MethodConfig, fracture_timed, load_source};
+//! use shatter_lab::fracture::{FractureConfig, fracture_timed, load_source};
+//! use shatter_geom::fracture::Method;
 //!
-//! let config = FractureConfig::shape(Shape::Cube, MethodConfig::voronoi(8, Pattern::Uniform), 1);
+//! let config = FractureConfig::shape(Shape::Cube, Method::voronoi(8, Pattern::Uniform), 1);
 //! let (model, _warnings) = load_source(&config)?;
 //! let (fracture, _warnings, _ms) = fracture_timed(&model, &config)?;
 //! assert!(fracture.fragments.len() >= 2);

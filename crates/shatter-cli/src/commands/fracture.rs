@@ -4,11 +4,10 @@ use std::path::PathBuf;
 
 use clap::{ArgGroup, Args, ValueEnum};
 use shatter_geom::DVec3;
-use shatter_geom::fracture::{MethodKind, Pattern, Placement};
+use shatter_geom::fracture::{Method, MethodKind, Pattern, Placement, Seeds};
 use shatter_geom::shapes::Shape;
 use shatter_lab::fracture::{
-    FractureConfig, FractureReport, MeshSource, MethodConfig, VoronoiSeeds, check_fracture,
-    fracture_timed, load_source,
+    FractureConfig, FractureReport, MeshSource, check_fracture, fracture_timed, load_source,
 };
 use shatter_lab::memory;
 
@@ -37,8 +36,8 @@ pub struct FractureArgs {
     /// Fracture method.
     #[arg(long, value_enum, default_value_t = MethodKind::Voronoi)]
     pub method: MethodKind,
-    /// grid: cells along x, y and z of the box (`--shape cube`, sized by --scale)
-    /// [default: 4,4,4].
+    /// grid: cells along x, y and z of the mesh's bounding box (bricks of a box, cells
+    /// clipped to any other mesh) [default: 4,4,4].
     #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_cells)]
     pub grid: Option<[u32; 3]>,
     /// Number of pieces (voronoi seeds or slice planes) [default: 20 voronoi, 4 slice].
@@ -175,18 +174,11 @@ impl FractureArgs {
         if method != MethodKind::Grid && self.grid.is_some() {
             return Err(refuse("--grid", MethodKind::Grid));
         }
-        if method == MethodKind::Grid {
-            if self.pieces.is_some() {
-                return Err(CliError::input(
-                    "--pieces applies to --method voronoi and slice; \
-                     --method grid makes one fragment per cell (see --grid)",
-                ));
-            }
-            if !matches!(source, MeshSource::Shape(Shape::Cube)) {
-                return Err(CliError::input(
-                    "--method grid cuts a box: use --shape cube (sized with --scale)",
-                ));
-            }
+        if method == MethodKind::Grid && self.pieces.is_some() {
+            return Err(CliError::input(
+                "--pieces applies to --method voronoi and slice; \
+                 --method grid makes one fragment per cell (see --grid)",
+            ));
         }
         if method == MethodKind::Tetra && self.pieces.is_some() {
             return Err(CliError::input(
@@ -201,7 +193,7 @@ impl FractureArgs {
             return Err(CliError::input("--impact applies to --pattern radial only"));
         }
         let method = match method {
-            MethodKind::Tetra => MethodConfig::Tetra {
+            MethodKind::Tetra => Method::Tetra {
                 random_vertices: self.random_vertices.unwrap_or(50),
                 skip: self.skip.unwrap_or(0),
                 center: self.center,
@@ -211,23 +203,23 @@ impl FractureArgs {
                 let seeds = match &self.seeds_file {
                     Some(path) => {
                         check_points_file(ctx, "--seeds-file", path)?;
-                        VoronoiSeeds::Points(read_points_file(path).map_err(CliError::input)?)
+                        Seeds::Points(read_points_file(path).map_err(CliError::input)?)
                     }
-                    None => VoronoiSeeds::Pattern {
+                    None => Seeds::Pattern {
                         count: self.pieces.unwrap_or(20),
                         pattern: self.pattern.unwrap_or(Pattern::Uniform),
+                        impact: self.impact,
                     },
                 };
-                MethodConfig::Voronoi {
-                    seeds,
-                    impact: self.impact,
-                }
+                Method::Voronoi { seeds }
             }
-            MethodKind::Slice => MethodConfig::Slice {
-                planes: self.pieces.unwrap_or(4),
+            MethodKind::Slice => Method::Slice {
+                pieces: self.pieces.unwrap_or(4),
+                planes: None,
             },
-            MethodKind::Grid => MethodConfig::Grid {
+            MethodKind::Grid => Method::Grid {
                 cells: self.grid.unwrap_or([4, 4, 4]),
+                voids: Vec::new(),
             },
         };
         let out = match &self.out {

@@ -9,11 +9,12 @@ use super::attributes::{Source, attach};
 use super::bonds::merge::merge_small;
 use super::kernel::convex::convex_pieces;
 use super::kernel::{Piece, is_surface, mesh_scale};
+use super::methods::grid::{Grid, bricks, is_box, sliced};
 use super::methods::slice::{random_planes, slice};
 use super::methods::tetra::{SLIVER_VOLUME_FRACTION, TetraOptions, tetra};
 use super::methods::voronoi::{voronoi, voronoi_with};
 use super::normalize::{Frame, check_cancellation, check_volume_sum};
-use super::params::{FractureError, FractureParams, Method, Pattern};
+use super::params::{FractureError, FractureParams, Method, Pattern, Seeds};
 use super::seeds::patterns::{seeds, splinter_weights};
 use super::types::{Bond, Fracture, Fragment};
 use super::validate::validated_piece;
@@ -31,7 +32,7 @@ const PLANE_EPS: f64 = 1e-10;
 /// [`Fracture::warnings`]. The same parameters and seed always give the same result.
 ///
 /// ```
-/// use shatter_geom::fracture::{fracture, FractureParams, Method, Pattern};
+/// use shatter_geom::fracture::{fracture, FractureParams, Method, Seeds};
 /// use shatter_geom::{DVec3, TriMesh};
 ///
 /// // A unit cube, 8 shared corners.
@@ -43,7 +44,7 @@ const PLANE_EPS: f64 = 1e-10;
 ///          [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6], [3, 0, 4], [3, 4, 7]],
 /// );
 /// let params = FractureParams {
-///     method: Method::Voronoi { pieces: 8, pattern: Pattern::Uniform, impact: None, seeds: None },
+///     method: Method::Voronoi { seeds: Seeds::count(8) },
 ///     seed: 1,
 /// };
 /// let result = fracture(&cube, &params)?;
@@ -141,8 +142,13 @@ fn fracture_tagged(
     frame.volume_to_world(volume, "the mesh's volume")?;
     frame.inertia_to_world(inertia, "the mesh's inertia tensor")?;
     let params = local_params(&frame, params)?;
-    // Tetra with skipped surface vertices fills only the points' hull, inside the mesh.
-    let partial = matches!(params.method, Method::Tetra { skip, .. } if skip > 0);
+    // Tetra with skipped surface vertices fills only the points' hull, inside the mesh;
+    // a grid with voids leaves them out.
+    let partial = match &params.method {
+        Method::Tetra { skip, .. } => *skip > 0,
+        Method::Grid { voids, .. } => !voids.is_empty(),
+        _ => false,
+    };
     let (local, tags) = fracture_local(piece, warnings, &params, frame.metric(), &frame)?;
     // A cut that lost or gained volume is refused, not returned (features far below the
     // cut tolerance, as a body squashed beside a 1e33 spike).
@@ -166,19 +172,22 @@ fn local_params(frame: &Frame, params: &FractureParams) -> Result<FractureParams
             .collect::<Result<Vec<_>, _>>()
     };
     let method = match &params.method {
-        Method::Voronoi {
-            pieces,
-            pattern,
-            impact,
-            seeds,
-        } => Method::Voronoi {
-            pieces: *pieces,
-            pattern: *pattern,
-            impact: match impact {
-                Some(i) => Some(points(std::slice::from_ref(i), "impact point")?[0]),
-                None => None,
+        Method::Voronoi { seeds } => Method::Voronoi {
+            seeds: match seeds {
+                Seeds::Pattern {
+                    count,
+                    pattern,
+                    impact,
+                } => Seeds::Pattern {
+                    count: *count,
+                    pattern: *pattern,
+                    impact: match impact {
+                        Some(i) => Some(points(std::slice::from_ref(i), "impact point")?[0]),
+                        None => None,
+                    },
+                },
+                Seeds::Points(list) => Seeds::Points(points(list, "seed")?),
             },
-            seeds: seeds.as_deref().map(|s| points(s, "seed")).transpose()?,
         },
         Method::Slice { pieces, planes } => Method::Slice {
             pieces: *pieces,
@@ -205,7 +214,7 @@ fn local_params(frame: &Frame, params: &FractureParams) -> Result<FractureParams
                 None => None,
             },
         },
-        m @ Method::Tetra { .. } => m.clone(),
+        m @ (Method::Tetra { .. } | Method::Grid { .. }) => m.clone(),
     };
     Ok(FractureParams {
         method,
@@ -242,31 +251,30 @@ fn fracture_local(
             };
             tetra(&piece, volume, &opt, eps, &mut rng, &mut warnings)?
         }
-        Method::Voronoi {
-            pieces,
-            pattern,
-            impact,
-            seeds: given,
-        } => {
+        Method::Voronoi { seeds: given } => {
             let points = match given {
-                Some(list) => {
+                Seeds::Points(list) => {
                     check_points(list, "seed")?;
                     if list.is_empty() {
                         return Err(FractureError::TooFewPieces(0));
                     }
                     list.clone()
                 }
-                None => {
-                    if *pieces < 1 {
-                        return Err(FractureError::TooFewPieces(*pieces));
+                Seeds::Pattern {
+                    count,
+                    pattern,
+                    impact,
+                } => {
+                    if *count < 1 {
+                        return Err(FractureError::TooFewPieces(*count));
                     }
                     if let Some(i) = impact {
                         check_points(std::slice::from_ref(i), "impact point")?;
                     }
-                    seeds(&piece, *pieces, *pattern, *impact, &mut rng)
+                    seeds(&piece, *count, *pattern, *impact, &mut rng)
                 }
             };
-            let metric = if *pattern == Pattern::Splinter && given.is_none() {
+            let metric = if given.pattern() == Some(Pattern::Splinter) {
                 metric * splinter_weights(frame.half_extents())
             } else {
                 metric
@@ -303,6 +311,25 @@ fn fracture_local(
             };
             let (pieces, bonds) = slice(&piece, &planes, eps);
             finish_cut(pieces, bonds, volume, eps, &mut warnings)
+        }
+        Method::Grid { cells, voids } => {
+            let total = cells
+                .iter()
+                .try_fold(1u64, |n, &c| n.checked_mul(u64::from(c)));
+            if total.is_none_or(|n| n == 0 || n >= u64::from(u32::MAX)) {
+                return Err(FractureError::BadGrid { cells: *cells });
+            }
+            let grid = Grid::over(&piece, *cells, voids);
+            if is_box(&piece) {
+                bricks(&grid)
+            } else {
+                let (pieces, bonds) = sliced(&piece, &grid, eps);
+                // Parts below the sliver threshold merge into a neighbour, as in the
+                // other methods, but a fine grid's whole cells are not slivers: at most
+                // a tenth of a cell is.
+                let sliver = volume.min(0.1 * grid.cell_volume() / SLIVER_VOLUME_FRACTION);
+                finish_cut(pieces, bonds, sliver, eps, &mut warnings)
+            }
         }
     };
     let fragments: Vec<Fragment> = fragments;

@@ -1,15 +1,15 @@
 //! Fracture of closed meshes into bonded fragments.
 //!
-//! Three methods ([`Method`]): the thesis's Delaunay tetrahedra (`Tetra`), Voronoi cells
-//! clipped exactly to the mesh (`Voronoi`, convex or concave meshes) and plane slicing
-//! (`Slice`). Every method returns a [`Fracture`]: closed, outward fragments whose
+//! Four methods ([`Method`]): the thesis's Delaunay tetrahedra (`Tetra`), Voronoi cells
+//! clipped exactly to the mesh (`Voronoi`, convex or concave meshes), plane slicing
+//! (`Slice`) and a grid of cells along the axes (`Grid`, bricks of a box). Every method returns a [`Fracture`]: closed, outward fragments whose
 //! triangles are flagged surface or interior (with the input's UVs, normals, colours and
 //! materials through [`fracture_model`]), convex pieces for collision, mass
 //! properties, and the bond graph of fragments sharing a face.
 //!
 //! Folders, one per concern: `kernel` (the working solid `Piece`, planes, exact clipping
 //! with caps kept as polygons, cap triangulation, the convex decomposition for
-//! collision), `methods` (`tetra`, `voronoi`, `slice`), `seeds` (patterns, inside tests
+//! collision), `methods` (`tetra`, `voronoi`, `slice`, `grid`), `seeds` (patterns, inside tests
 //! and sampling), `bonds` (bonds through matching caps, merging small pieces); beside them
 //! `params` and `types` (the public types), `validate` (input checks), `attributes`
 //! (UVs, normals, colours and materials of the fragments, from their positions and the
@@ -32,8 +32,9 @@ mod validate;
 pub use attributes::interior_material;
 pub use check::{InvalidFracture, VOLUME_TOLERANCE};
 pub use entry::{fracture, fracture_model};
+pub(crate) use methods::grid::fills_box;
 pub use methods::tetra::{SLIVER_QUALITY, SLIVER_VOLUME_FRACTION};
 pub use normalize::ANISOTROPY;
-pub use params::{FractureError, FractureParams, Method, MethodKind, Pattern, Placement};
+pub use params::{FractureError, FractureParams, Method, MethodKind, Pattern, Placement, Seeds};
 pub use rough::{RoughReport, Roughness, roughen};
 pub use types::{Bond, Fracture, Fragment};

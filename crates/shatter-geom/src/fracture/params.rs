@@ -35,9 +35,7 @@ crate::vocabulary! {
 
 crate::vocabulary! {
     /// The name of a fracture method, without its parameters: the word of scene files,
-    /// the CLI's `--method` and the app's panels. [`Method`] holds the parameters of the
-    /// first three; [`MethodKind::Grid`] (box-shaped objects cut into a brick grid) is
-    /// built by `shatter_sim` and has no [`Method`].
+    /// the CLI's `--method` and the app's panels. [`Method`] holds each one's parameters.
     ///
     /// ```
     /// use shatter_geom::fracture::{Method, MethodKind};
@@ -51,7 +49,8 @@ crate::vocabulary! {
         Voronoi = "voronoi",
         /// Random planes slicing the mesh.
         Slice = "slice",
-        /// A regular grid of boxes (bricks); only for box-shaped objects.
+        /// A regular grid of cells along the axes: bricks of a box, or cells clipped to
+        /// any other mesh.
         Grid = "grid",
     }
 }
@@ -71,16 +70,10 @@ pub enum Method {
         /// Where the random points go.
         placement: Placement,
     },
-    /// Voronoi cells of `pieces` seeds clipped to the mesh.
+    /// Voronoi cells of seed points clipped to the mesh.
     Voronoi {
-        /// Number of seeds (ignored when `seeds` is given).
-        pieces: usize,
-        /// Seed distribution.
-        pattern: Pattern,
-        /// Impact point for [`Pattern::Radial`] (default: a random surface vertex).
-        impact: Option<DVec3>,
-        /// Explicit seeds (e.g. read from a file); overrides `pieces` and `pattern`.
-        seeds: Option<Vec<DVec3>>,
+        /// The seeds: generated in a pattern, or given.
+        seeds: Seeds,
     },
     /// Cuts by `pieces` planes, each cutting every current piece.
     Slice {
@@ -89,15 +82,109 @@ pub enum Method {
         /// Explicit planes as `(point, normal)`.
         planes: Option<Vec<(DVec3, DVec3)>>,
     },
+    /// The mesh's bounding box cut into `cells[0] × cells[1] × cells[2]` equal boxes along
+    /// the axes, each clipped to the mesh: bricks of a box-shaped mesh. Fragments come in
+    /// grid order, `x` fastest (fragment `x + nx·(y + ny·z)` for a box without voids).
+    Grid {
+        /// Cells along x, y and z (each at least 1).
+        cells: [u32; 3],
+        /// Cells left out, as boxes of cells `[x0, y0, z0, x1, y1, z1]` (`x0 <= x < x1`
+        /// and so on): an arch's opening, a bridge's span. The faces that border a
+        /// left-out cell are surface, not cuts.
+        voids: Vec<[u32; 6]>,
+    },
+}
+
+/// The seeds of [`Method::Voronoi`]: generated, or given.
+///
+/// ```
+/// use shatter_geom::fracture::{Pattern, Seeds};
+/// assert_eq!(Seeds::count(12), Seeds::Pattern { count: 12, pattern: Pattern::Uniform, impact: None });
+/// assert_eq!(Seeds::Points(vec![[0.0; 3].into(); 3]).len(), 3);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub enum Seeds {
+    /// `count` seeds drawn in `pattern`.
+    Pattern {
+        /// How many.
+        count: usize,
+        /// Their distribution.
+        pattern: Pattern,
+        /// The impact point of [`Pattern::Radial`] (default: a random surface vertex);
+        /// the other patterns ignore it.
+        impact: Option<DVec3>,
+    },
+    /// These seeds (e.g. read from a file).
+    Points(Vec<DVec3>),
+}
+
+impl Seeds {
+    /// `count` uniform seeds.
+    pub fn count(count: usize) -> Seeds {
+        Seeds::Pattern {
+            count,
+            pattern: Pattern::Uniform,
+            impact: None,
+        }
+    }
+
+    /// The number of seeds (so of cells before any is found empty).
+    pub fn len(&self) -> usize {
+        match self {
+            Seeds::Pattern { count, .. } => *count,
+            Seeds::Points(points) => points.len(),
+        }
+    }
+
+    /// Whether there is no seed.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The generated seeds' pattern; given points have none.
+    pub fn pattern(&self) -> Option<Pattern> {
+        match self {
+            Seeds::Pattern { pattern, .. } => Some(*pattern),
+            Seeds::Points(_) => None,
+        }
+    }
 }
 
 impl Method {
+    /// The tetra method with `random_vertices` random points placed by `placement`, no
+    /// skipped surface vertex and no centre point.
+    ///
+    /// ```
+    /// use shatter_geom::fracture::{Method, MethodKind, Placement};
+    /// assert_eq!(Method::tetra(50, Placement::Thesis).kind(), MethodKind::Tetra);
+    /// ```
+    pub fn tetra(random_vertices: usize, placement: Placement) -> Method {
+        Method::Tetra {
+            random_vertices,
+            skip: 0,
+            center: false,
+            placement,
+        }
+    }
+
+    /// The Voronoi method with `count` seeds in `pattern` (no impact point).
+    pub fn voronoi(count: usize, pattern: Pattern) -> Method {
+        Method::Voronoi {
+            seeds: Seeds::Pattern {
+                count,
+                pattern,
+                impact: None,
+            },
+        }
+    }
+
     /// The method's name.
     pub fn kind(&self) -> MethodKind {
         match self {
             Method::Tetra { .. } => MethodKind::Tetra,
             Method::Voronoi { .. } => MethodKind::Voronoi,
             Method::Slice { .. } => MethodKind::Slice,
+            Method::Grid { .. } => MethodKind::Grid,
         }
     }
 }
@@ -105,10 +192,7 @@ impl Method {
 impl Default for Method {
     fn default() -> Self {
         Method::Voronoi {
-            pieces: 20,
-            pattern: Pattern::Uniform,
-            impact: None,
-            seeds: None,
+            seeds: Seeds::count(20),
         }
     }
 }
@@ -116,13 +200,13 @@ impl Default for Method {
 /// Parameters of [`fracture`](super::fracture).
 ///
 /// ```
-/// use shatter_geom::fracture::{FractureParams, Method, Placement};
+/// use shatter_geom::fracture::{FractureParams, Method, Placement, Seeds};
 /// let params = FractureParams {
 ///     method: Method::Tetra { random_vertices: 50, skip: 0, center: true, placement: Placement::Thesis },
 ///     seed: 7,
 /// };
 /// assert_eq!(params.seed, 7);
-/// assert!(matches!(FractureParams::default().method, Method::Voronoi { pieces: 20, .. }));
+/// assert_eq!(FractureParams::default().method, Method::Voronoi { seeds: Seeds::count(20) });
 /// ```
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct FractureParams {
@@ -136,18 +220,15 @@ impl FractureParams {
     /// `pieces` Voronoi cells from uniform random seeds.
     ///
     /// ```
-    /// use shatter_geom::fracture::{FractureParams, Method, Pattern};
+    /// use shatter_geom::fracture::{FractureParams, Method, Seeds};
     /// let p = FractureParams::voronoi(8, 3);
-    /// assert!(matches!(p.method, Method::Voronoi { pieces: 8, pattern: Pattern::Uniform, .. }));
+    /// assert_eq!(p.method, Method::Voronoi { seeds: Seeds::count(8) });
     /// assert_eq!(p.seed, 3);
     /// ```
     pub fn voronoi(pieces: usize, seed: u64) -> FractureParams {
         FractureParams {
             method: Method::Voronoi {
-                pieces,
-                pattern: Pattern::Uniform,
-                impact: None,
-                seeds: None,
+                seeds: Seeds::count(pieces),
             },
             seed,
         }
@@ -167,6 +248,18 @@ pub enum FractureError {
     /// A fragment count below one.
     #[error("the number of pieces must be at least 1 (got {0})")]
     TooFewPieces(usize),
+    /// A grid with no cell along an axis, or more cells than fragment indices hold.
+    #[error(
+        "the grid needs at least 1 cell along each axis and fewer than 2^32 in all \
+         (got {}×{}×{})",
+        cells[0],
+        cells[1],
+        cells[2]
+    )]
+    BadGrid {
+        /// The cells asked for along x, y and z.
+        cells: [u32; 3],
+    },
     /// An explicit seed or plane is not finite, or a plane normal is zero.
     #[error("{what} {index} is not finite or degenerate")]
     BadInput {

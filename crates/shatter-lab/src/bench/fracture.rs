@@ -7,15 +7,13 @@
 
 use serde::Serialize;
 use shatter_geom::budget::{Estimate, format_count};
-use shatter_geom::fracture::{Pattern, Placement};
+use shatter_geom::fracture::{Method, Pattern, Placement};
 use shatter_geom::shapes::Shape;
 
 use crate::bar::Bar;
 use crate::context::Context;
 use crate::error::LabError;
-use crate::fracture::{
-    FractureConfig, MethodConfig, fracture_estimate, fracture_timed, load_source,
-};
+use crate::fracture::{FractureConfig, fracture_estimate, fracture_timed, load_source};
 use crate::spread::Spread;
 
 /// One benchmark case.
@@ -26,13 +24,13 @@ pub struct Case {
     /// The shape fractured.
     pub shape: Shape,
     /// How.
-    pub method: MethodConfig,
+    pub method: Method,
 }
 
 /// The cases, in the order they run.
 pub fn cases() -> Vec<Case> {
-    let voronoi = MethodConfig::voronoi;
-    let tetra = MethodConfig::tetra;
+    let voronoi = Method::voronoi;
+    let tetra = Method::tetra;
     let case = |name, shape, method| Case {
         name,
         shape,
@@ -77,12 +75,18 @@ pub fn cases() -> Vec<Case> {
         case(
             "bird slice 8",
             Shape::Bird,
-            MethodConfig::Slice { planes: 8 },
+            Method::Slice {
+                planes: None,
+                pieces: 8,
+            },
         ),
         case(
             "cube slice 8",
             Shape::Cube,
-            MethodConfig::Slice { planes: 8 },
+            Method::Slice {
+                planes: None,
+                pieces: 8,
+            },
         ),
     ]
 }
@@ -213,17 +217,17 @@ mod tests {
         assert!(
             cases
                 .iter()
-                .any(|c| matches!(c.method, MethodConfig::Tetra { .. }))
+                .any(|c| matches!(c.method, Method::Tetra { .. }))
         );
         assert!(
             cases
                 .iter()
-                .any(|c| matches!(c.method, MethodConfig::Voronoi { .. }))
+                .any(|c| matches!(c.method, Method::Voronoi { .. }))
         );
         assert!(
             cases
                 .iter()
-                .any(|c| matches!(c.method, MethodConfig::Slice { .. }))
+                .any(|c| matches!(c.method, Method::Slice { .. }))
         );
     }
 

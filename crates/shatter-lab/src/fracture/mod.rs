@@ -7,9 +7,7 @@ mod run;
 mod source;
 
 pub use report::{BondEntry, EstimateReport, FractureReport};
-pub use request::{
-    FractureConfig, MeshSource, MethodConfig, VoronoiSeeds, check_fracture, fracture_estimate,
-};
+pub use request::{FractureConfig, MeshSource, check_fracture, fracture_estimate};
 pub use run::{fracture, fracture_timed};
 pub use source::{
     builtin_shape, load_model, load_source, repair, scaled, scaled_model, validate_model,

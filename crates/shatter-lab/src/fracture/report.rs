@@ -117,12 +117,20 @@ impl FractureReport {
 mod tests {
     #![allow(clippy::unwrap_used)]
     use super::*;
-    use crate::fracture::{FractureConfig, MethodConfig, fracture_timed, load_source};
+    use crate::fracture::{FractureConfig, fracture_timed, load_source};
+    use shatter_geom::fracture::Method;
     use shatter_geom::shapes::Shape;
 
     #[test]
     fn the_report_counts_and_adds_up_the_fracture() {
-        let config = FractureConfig::shape(Shape::Cube, MethodConfig::Grid { cells: [2, 2, 1] }, 0);
+        let config = FractureConfig::shape(
+            Shape::Cube,
+            Method::Grid {
+                cells: [2, 2, 1],
+                voids: Vec::new(),
+            },
+            0,
+        );
         let (model, _) = load_source(&config).unwrap();
         let (f, _, ms) = fracture_timed(&model, &config).unwrap();
         let r = FractureReport::new(&model.mesh, &f, ms, vec!["w".into()]).with_bond_list(&f);

@@ -5,8 +5,7 @@
 use std::path::PathBuf;
 
 use shatter_geom::budget::{Estimate, format_count};
-use shatter_geom::fracture::Pattern;
-use shatter_geom::fracture::Placement;
+use shatter_geom::fracture::{Method, Seeds};
 use shatter_geom::shapes::Shape;
 use shatter_geom::{DVec3, TriMesh};
 
@@ -22,74 +21,6 @@ pub enum MeshSource {
     Shape(Shape),
 }
 
-/// A validated fracture method with its parameters.
-#[derive(Debug, Clone)]
-pub enum MethodConfig {
-    /// The thesis's tetrahedra.
-    Tetra {
-        /// Random points added.
-        random_vertices: usize,
-        /// Surface vertices skipped between two taken.
-        skip: usize,
-        /// Add the centre point.
-        center: bool,
-        /// Random point placement.
-        placement: Placement,
-    },
-    /// Voronoi cells clipped to the mesh.
-    Voronoi {
-        /// Seeds: generated (count and pattern) or given.
-        seeds: VoronoiSeeds,
-        /// Impact point for the radial pattern.
-        impact: Option<DVec3>,
-    },
-    /// Plane slicing.
-    Slice {
-        /// Number of planes.
-        planes: usize,
-    },
-    /// A box cut into a regular grid of boxes (bricks).
-    Grid {
-        /// Cells along x, y and z.
-        cells: [u32; 3],
-    },
-}
-
-impl MethodConfig {
-    /// The tetra method with `random_vertices` random points placed by `placement`, no
-    /// skipped surface vertex and no centre point.
-    pub fn tetra(random_vertices: usize, placement: Placement) -> Self {
-        Self::Tetra {
-            random_vertices,
-            skip: 0,
-            center: false,
-            placement,
-        }
-    }
-
-    /// The Voronoi method with `count` seeds in `pattern` (no impact point).
-    pub fn voronoi(count: usize, pattern: Pattern) -> Self {
-        Self::Voronoi {
-            seeds: VoronoiSeeds::Pattern { count, pattern },
-            impact: None,
-        }
-    }
-}
-
-/// Voronoi seeds, generated or read from a file.
-#[derive(Debug, Clone)]
-pub enum VoronoiSeeds {
-    /// `count` seeds in a pattern.
-    Pattern {
-        /// Number of seeds.
-        count: usize,
-        /// Their pattern.
-        pattern: Pattern,
-    },
-    /// Given seeds.
-    Points(Vec<DVec3>),
-}
-
 /// A fully validated fracture request.
 #[derive(Debug, Clone)]
 pub struct FractureConfig {
@@ -98,7 +29,7 @@ pub struct FractureConfig {
     /// Its scale.
     pub scale: DVec3,
     /// Method and parameters.
-    pub method: MethodConfig,
+    pub method: Method,
     /// Random seed.
     pub seed: u64,
     /// Refuse a file that is not a valid solid instead of repairing it.
@@ -108,7 +39,7 @@ pub struct FractureConfig {
 impl FractureConfig {
     /// A built-in shape at unit scale cut by `method` with `seed` (strict: a shape is a
     /// valid solid).
-    pub fn shape(shape: Shape, method: MethodConfig, seed: u64) -> Self {
+    pub fn shape(shape: Shape, method: Method, seed: u64) -> Self {
         Self {
             source: MeshSource::Shape(shape),
             scale: DVec3::ONE,
@@ -121,7 +52,7 @@ impl FractureConfig {
     /// A one-line description of the method and its parameters.
     pub fn describe(&self) -> String {
         let method = match &self.method {
-            MethodConfig::Tetra {
+            Method::Tetra {
                 random_vertices,
                 skip,
                 center,
@@ -129,20 +60,31 @@ impl FractureConfig {
             } => format!(
                 "tetra, {random_vertices} random vertices ({placement:?}), skip {skip}, center {center}"
             ),
-            MethodConfig::Voronoi { seeds, impact } => {
-                let seeds = match seeds {
-                    VoronoiSeeds::Pattern { count, pattern } => {
-                        format!("{count} {pattern:?} seeds")
+            Method::Voronoi { seeds } => match seeds {
+                Seeds::Pattern {
+                    count,
+                    pattern,
+                    impact,
+                } => {
+                    let seeds = format!("{count} {pattern:?} seeds");
+                    match impact {
+                        Some(i) => format!("voronoi, {seeds}, impact {},{},{}", i.x, i.y, i.z),
+                        None => format!("voronoi, {seeds}"),
                     }
-                    VoronoiSeeds::Points(p) => format!("{} seeds from a file", p.len()),
-                };
-                match impact {
-                    Some(i) => format!("voronoi, {seeds}, impact {},{},{}", i.x, i.y, i.z),
-                    None => format!("voronoi, {seeds}"),
                 }
-            }
-            MethodConfig::Slice { planes } => format!("slice, {planes} planes"),
-            MethodConfig::Grid { cells: [x, y, z] } => format!("grid, {x}x{y}x{z} cells"),
+                Seeds::Points(p) => format!("voronoi, {} seeds from a file", p.len()),
+            },
+            Method::Slice { pieces, planes } => match planes {
+                Some(list) => format!("slice, {} given planes", list.len()),
+                None => format!("slice, {pieces} planes"),
+            },
+            Method::Grid {
+                cells: [x, y, z],
+                voids,
+            } => match voids.len() {
+                0 => format!("grid, {x}x{y}x{z} cells"),
+                n => format!("grid, {x}x{y}x{z} cells, {n} voids"),
+            },
         };
         format!("{method}, seed {}", self.seed)
     }
@@ -153,7 +95,7 @@ impl FractureConfig {
 pub fn fracture_estimate(mesh: &TriMesh, config: &FractureConfig) -> (String, Estimate) {
     let triangles = mesh.triangles.len() as u64;
     match &config.method {
-        MethodConfig::Tetra {
+        Method::Tetra {
             random_vertices,
             skip,
             center,
@@ -171,10 +113,10 @@ pub fn fracture_estimate(mesh: &TriMesh, config: &FractureConfig) -> (String, Es
                 Estimate::tetra_fracture(points).with_process(),
             )
         }
-        MethodConfig::Voronoi { seeds, .. } => {
+        Method::Voronoi { seeds } => {
             let (flag, cells) = match seeds {
-                VoronoiSeeds::Pattern { count, .. } => (format!("--pieces {count}"), *count),
-                VoronoiSeeds::Points(p) => ("--seeds-file".to_string(), p.len()),
+                Seeds::Pattern { count, .. } => (format!("--pieces {count}"), *count),
+                Seeds::Points(p) => ("--seeds-file".to_string(), p.len()),
             };
             (
                 format!(
@@ -185,30 +127,30 @@ pub fn fracture_estimate(mesh: &TriMesh, config: &FractureConfig) -> (String, Es
                 Estimate::voronoi_fracture(cells as u64, triangles).with_process(),
             )
         }
-        MethodConfig::Slice { planes } => (
-            format!(
-                "--pieces {planes}: {} slice planes (about {} pieces)",
-                format_count(*planes as u64),
-                format_count(shatter_geom::budget::slice_pieces(*planes as u64) as u64)
-            ),
-            Estimate::slice_fracture(*planes as u64, triangles).with_process(),
-        ),
-        MethodConfig::Grid { cells } => {
-            use shatter_sim::scene::budget::{GRID_BYTES_PER_BRICK, GRID_SECONDS_PER_BRICK};
-            let bricks: f64 = cells.iter().map(|&c| f64::from(c)).product();
+        Method::Slice { pieces, planes } => {
+            let planes = planes.as_ref().map_or(*pieces, Vec::len);
             (
                 format!(
-                    "--grid {},{},{}: {} bricks",
+                    "--pieces {planes}: {} slice planes (about {} pieces)",
+                    format_count(planes as u64),
+                    format_count(shatter_geom::budget::slice_pieces(planes as u64) as u64)
+                ),
+                Estimate::slice_fracture(planes as u64, triangles).with_process(),
+            )
+        }
+        Method::Grid { cells, .. } => {
+            let n: f64 = cells.iter().map(|&c| f64::from(c)).product();
+            let boxed = shatter_geom::budget::is_box(mesh);
+            (
+                format!(
+                    "--grid {},{},{}: {} {}",
                     cells[0],
                     cells[1],
                     cells[2],
-                    format_count(bricks as u64)
+                    format_count(n as u64),
+                    if boxed { "bricks" } else { "cells" }
                 ),
-                Estimate {
-                    bytes: bricks * GRID_BYTES_PER_BRICK,
-                    seconds: bricks * GRID_SECONDS_PER_BRICK,
-                }
-                .with_process(),
+                Estimate::grid_fracture(*cells, triangles, boxed).with_process(),
             )
         }
     }
@@ -230,12 +172,20 @@ mod tests {
     #![allow(clippy::unwrap_used)]
     use super::*;
     use shatter_geom::budget::Limits;
+    use shatter_geom::fracture::{Pattern, Placement};
 
     #[test]
     fn a_request_describes_its_method_and_seed() {
-        let c = FractureConfig::shape(Shape::Cube, MethodConfig::voronoi(20, Pattern::Uniform), 3);
+        let c = FractureConfig::shape(Shape::Cube, Method::voronoi(20, Pattern::Uniform), 3);
         assert_eq!(c.describe(), "voronoi, 20 Uniform seeds, seed 3");
-        let c = FractureConfig::shape(Shape::Cube, MethodConfig::Grid { cells: [2, 3, 4] }, 0);
+        let c = FractureConfig::shape(
+            Shape::Cube,
+            Method::Grid {
+                cells: [2, 3, 4],
+                voids: Vec::new(),
+            },
+            0,
+        );
         assert_eq!(c.describe(), "grid, 2x3x4 cells, seed 0");
     }
 
@@ -243,7 +193,7 @@ mod tests {
     fn estimates_grow_with_the_request_and_name_its_flag() {
         let cube = Shape::Cube.mesh();
         let tetra =
-            |n| FractureConfig::shape(Shape::Cube, MethodConfig::tetra(n, Placement::Interior), 0);
+            |n| FractureConfig::shape(Shape::Cube, Method::tetra(n, Placement::Interior), 0);
         let (what, small) = fracture_estimate(&cube, &tetra(10));
         assert_eq!(what, "--random-vertices 10: a tetra fracture of 34 points");
         let (_, large) = fracture_estimate(&cube, &tetra(1_000_000));

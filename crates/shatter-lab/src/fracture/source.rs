@@ -134,13 +134,13 @@ pub fn load_source(config: &FractureConfig) -> Result<(Model, Vec<String>), LabE
 mod tests {
     #![allow(clippy::unwrap_used)]
     use super::*;
-    use crate::fracture::request::MethodConfig;
+    use shatter_geom::fracture::Method;
     use shatter_geom::fracture::Pattern;
 
     #[test]
     fn a_shape_loads_scaled_and_outward() {
         let mut config =
-            FractureConfig::shape(Shape::Cube, MethodConfig::voronoi(4, Pattern::Uniform), 0);
+            FractureConfig::shape(Shape::Cube, Method::voronoi(4, Pattern::Uniform), 0);
         config.scale = DVec3::new(2.0, 1.0, 1.0);
         let (model, warnings) = load_source(&config).unwrap();
         assert!(warnings.is_empty(), "{warnings:?}");
@@ -163,7 +163,7 @@ mod tests {
     fn a_missing_file_is_bad_input_naming_it() {
         let config = FractureConfig {
             source: MeshSource::File("/nonexistent/bird.obj".into()),
-            ..FractureConfig::shape(Shape::Cube, MethodConfig::voronoi(4, Pattern::Uniform), 0)
+            ..FractureConfig::shape(Shape::Cube, Method::voronoi(4, Pattern::Uniform), 0)
         };
         assert_eq!(
             load_source(&config).unwrap_err(),

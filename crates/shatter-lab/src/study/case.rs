@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use shatter_geom::budget::Estimate;
-use shatter_geom::fracture::{Fracture, MethodKind, Pattern, Placement};
+use shatter_geom::fracture::{Fracture, Method, MethodKind, Pattern, Placement};
 use shatter_geom::progress::Progress;
 use shatter_geom::shapes::Shape;
 use shatter_sim::{
@@ -14,7 +14,7 @@ use shatter_sim::{
 use super::config::{Case, StudyConfig};
 use crate::error::{LabError, ResultExt};
 use crate::fracture::{
-    FractureConfig, MethodConfig, builtin_shape, fracture_estimate, fracture_timed, load_source,
+    FractureConfig, builtin_shape, fracture_estimate, fracture_timed, load_source,
 };
 
 /// What one case did.
@@ -73,13 +73,15 @@ pub fn released_fragments(fragments: usize, bonds: &[(u32, u32)], broken: &[bool
 /// The fracture configuration of `case`: the standard cube cut by its method.
 fn case_config(case: &Case) -> FractureConfig {
     let method = match case.method {
-        MethodKind::Tetra => MethodConfig::tetra(case.random_vertices, Placement::Interior),
-        MethodKind::Voronoi => MethodConfig::voronoi(case.pieces, Pattern::Uniform),
-        MethodKind::Slice => MethodConfig::Slice {
-            planes: case.planes,
+        MethodKind::Tetra => Method::tetra(case.random_vertices, Placement::Interior),
+        MethodKind::Voronoi => Method::voronoi(case.pieces, Pattern::Uniform),
+        MethodKind::Slice => Method::Slice {
+            pieces: case.planes,
+            planes: None,
         },
-        MethodKind::Grid => MethodConfig::Grid {
+        MethodKind::Grid => Method::Grid {
             cells: [grid_side(case.pieces); 3],
+            voids: Vec::new(),
         },
     };
     FractureConfig::shape(Shape::Cube, method, case.seed)

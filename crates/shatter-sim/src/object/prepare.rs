@@ -6,14 +6,12 @@ use std::sync::Arc;
 use glam::Vec3;
 use shatter_geom::fracture::{Bond, Fracture, Fragment, Roughness};
 use shatter_geom::model::{Corners, Model};
-use shatter_geom::shapes::Shape;
 use shatter_geom::{DMat3, DVec3, TriMesh};
 
 use crate::error::SimError;
 use crate::material::{MethodKind, Pattern};
 use crate::object::spec::{FractureParams, FractureSource, ObjectSpec};
 use crate::runtime::FractureTiming;
-use crate::testing::box_grid_fracture_with_voids;
 
 /// Simulation-ready geometry of one object, in its own frame with the scale applied.
 #[derive(Debug, Clone)]
@@ -40,19 +38,6 @@ pub fn resolve_fracture(spec: &ObjectSpec, key: &str) -> Result<Arc<Fracture>, S
         FractureSource::Prebuilt(f) => Ok(f.clone()),
         FractureSource::Shape { shape, params } => {
             let method = params.method.unwrap_or(spec.material.method);
-            if method == MethodKind::Grid {
-                if *shape != Shape::Cube {
-                    return Err(SimError::invalid(
-                        format!("{key}.method"),
-                        format!("the grid method needs shape = \"cube\", got `{shape}`"),
-                    ));
-                }
-                return Ok(Arc::new(box_grid_fracture_with_voids(
-                    params.grid,
-                    DVec3::ONE,
-                    &params.grid_voids,
-                )));
-            }
             let pattern = params.pattern.unwrap_or(spec.material.pattern);
             let rough = local_roughness(spec);
             let mesh = shape.mesh();
@@ -122,8 +107,8 @@ enum Input<'a> {
     Model(&'a Model),
 }
 
-/// Runs `shatter_geom::fracture` (tetra, voronoi, slice) on a mesh or model, then
-/// roughens its cut faces (`rough`; off: nothing changes).
+/// Runs `shatter_geom::fracture` (tetra, voronoi, slice, grid) on a mesh or model, then
+/// roughens its cut faces (`rough`; off, or a grid: nothing changes).
 fn geom_fracture(
     input: Input<'_>,
     params: &FractureParams,
@@ -133,6 +118,7 @@ fn geom_fracture(
     key: &str,
 ) -> Result<Arc<Fracture>, SimError> {
     use shatter_geom::fracture as geom;
+    let method_kind = method;
     let method = match method {
         MethodKind::Tetra => geom::Method::Tetra {
             random_vertices: params.random_vertices as usize,
@@ -141,21 +127,20 @@ fn geom_fracture(
             placement: params.placement,
         },
         MethodKind::Voronoi => geom::Method::Voronoi {
-            pieces: params.pieces as usize,
-            pattern,
-            impact: None,
-            seeds: None,
+            seeds: geom::Seeds::Pattern {
+                count: params.pieces as usize,
+                pattern,
+                impact: None,
+            },
         },
         MethodKind::Slice => geom::Method::Slice {
             pieces: params.pieces as usize,
             planes: None,
         },
-        MethodKind::Grid => {
-            return Err(SimError::invalid(
-                format!("{key}.method"),
-                "the grid method needs shape = \"cube\"",
-            ));
-        }
+        MethodKind::Grid => geom::Method::Grid {
+            cells: params.grid,
+            voids: params.grid_voids.clone(),
+        },
     };
     let params = geom::FractureParams {
         method,
@@ -170,7 +155,8 @@ fn geom_fracture(
         reason: e.to_string(),
     })?;
     let mut fracture = fracture;
-    if !rough.is_off() {
+    // A grid's joints stay flat: masonry, whatever its material's roughness.
+    if !rough.is_off() && method_kind != MethodKind::Grid {
         geom::roughen(&mut fracture, rough).map_err(|e| SimError::Fracture {
             key: format!("{key}.roughness"),
             reason: e.to_string(),

@@ -155,10 +155,11 @@ pub fn cut_at(
         model,
         &geom::FractureParams {
             method: geom::Method::Voronoi {
-                pieces: pieces as usize,
-                pattern: geom::Pattern::Radial,
-                impact: Some(impact),
-                seeds: None,
+                seeds: geom::Seeds::Pattern {
+                    count: pieces as usize,
+                    pattern: geom::Pattern::Radial,
+                    impact: Some(impact),
+                },
             },
             seed,
         },

@@ -39,10 +39,6 @@ use crate::scene::Scene;
 pub const SIM_BYTES_PER_FRAGMENT: f64 = 25_000.0;
 /// Bytes per simulated fragment with joints (its joints and their solver data added).
 pub const SIM_BYTES_PER_FRAGMENT_JOINTS: f64 = 45_000.0;
-/// Bytes per brick of the `grid` method's fracture (a 12-triangle box and its bonds).
-pub const GRID_BYTES_PER_BRICK: f64 = 2_000.0;
-/// Seconds per brick of the `grid` method.
-pub const GRID_SECONDS_PER_BRICK: f64 = 2.0e-6;
 /// Seconds to build one fragment's body and colliders.
 pub const SIM_BUILD_SECONDS_PER_FRAGMENT: f64 = 2.0e-5;
 /// Seconds per step and per fragment with clusters (contacts, the solver, bond loads).
@@ -115,17 +111,22 @@ pub fn bodies_estimate(fragments: f64, model: BondModel) -> Estimate {
     }
 }
 
-/// Vertices and triangles of the mesh an object is cut from: a built-in shape's own, a
-/// mesh file's once loaded (a file that does not load is reported when the object is
-/// built; here it counts as empty).
-fn mesh_size(source: &FractureSource) -> (u64, u64) {
+/// Vertices and triangles of the mesh an object is cut from, and whether it is a box
+/// ([`shatter_geom::budget::is_box`]): a built-in shape's own, a mesh file's once loaded
+/// (a file that does not load is reported when the object is built; here it counts as
+/// empty).
+fn mesh_size(source: &FractureSource) -> (u64, u64, bool) {
     let mesh = match source {
         FractureSource::Prebuilt(_) => None,
         FractureSource::Shape { shape, .. } => Some(shape.mesh()),
         FractureSource::MeshFile { path, .. } => shatter_geom::io::load_mesh(path).ok(),
     };
-    mesh.map_or((0, 0), |m| {
-        (m.positions.len() as u64, m.triangles.len() as u64)
+    mesh.map_or((0, 0, false), |m| {
+        (
+            m.positions.len() as u64,
+            m.triangles.len() as u64,
+            shatter_geom::budget::is_box(&m),
+        )
     })
 }
 
@@ -147,25 +148,19 @@ pub fn object_estimate(key: &str, spec: &ObjectSpec, world_model: BondModel) -> 
         FractureSource::Shape { params, .. } | FractureSource::MeshFile { params, .. } => params,
     };
     let method = params.method.unwrap_or(spec.material.method);
-    let (vertices, triangles) = if method == MethodKind::Grid {
-        (0, 0)
-    } else {
-        mesh_size(&spec.source)
-    };
+    let (vertices, triangles, boxed) = mesh_size(&spec.source);
     let (what, fragments, fracture) = match method {
         MethodKind::Grid => {
             let bricks: f64 = params.grid.iter().map(|&c| f64::from(c)).product();
             (
                 format!(
-                    "{key}.grid = {:?}: {} bricks",
+                    "{key}.grid = {:?}: {} {}",
                     params.grid,
-                    format_count(bricks as u64)
+                    format_count(bricks as u64),
+                    if boxed { "bricks" } else { "cells" }
                 ),
                 bricks,
-                Estimate {
-                    bytes: bricks * GRID_BYTES_PER_BRICK,
-                    seconds: bricks * GRID_SECONDS_PER_BRICK,
-                },
+                Estimate::grid_fracture(params.grid, triangles, boxed),
             )
         }
         MethodKind::Tetra => {

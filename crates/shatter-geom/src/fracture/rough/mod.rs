@@ -164,11 +164,11 @@ pub struct RoughReport {
 /// give the same result.
 ///
 /// ```
-/// use shatter_geom::fracture::{fracture, roughen, FractureParams, Method, Pattern, Roughness};
+/// use shatter_geom::fracture::{fracture, roughen, FractureParams, Method, Seeds, Pattern, Roughness};
 /// use shatter_geom::shapes;
 ///
 /// let params = FractureParams {
-///     method: Method::Voronoi { pieces: 8, pattern: Pattern::Uniform, impact: None, seeds: None },
+///     method: Method::Voronoi { seeds: Seeds::count(8) },
 ///     seed: 1,
 /// };
 /// let mut rough = fracture(&shapes::cube(), &params)?;

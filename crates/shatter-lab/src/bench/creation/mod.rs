@@ -14,7 +14,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use shatter_geom::budget::{Estimate, format_count};
-use shatter_geom::fracture::{Fracture, Placement};
+use shatter_geom::fracture::{Fracture, Method, Placement};
 use shatter_geom::model::Model;
 use shatter_geom::shapes::Shape;
 
@@ -23,9 +23,7 @@ pub use output::{HEADER, plots, table, write_csv};
 
 use crate::context::Context;
 use crate::error::{LabError, ResultExt};
-use crate::fracture::{
-    FractureConfig, MethodConfig, fracture_estimate, fracture_timed, load_source,
-};
+use crate::fracture::{FractureConfig, fracture_estimate, fracture_timed, load_source};
 use crate::spread::Spread;
 
 /// One timed creation.
@@ -219,7 +217,7 @@ fn fracture_config(
     random_vertices: usize,
     seed: u64,
 ) -> FractureConfig {
-    FractureConfig::shape(model, MethodConfig::tetra(random_vertices, placement), seed)
+    FractureConfig::shape(model, Method::tetra(random_vertices, placement), seed)
 }
 
 /// Runs the benchmark: validates the options, checks the estimate against the context's
