@@ -27,7 +27,7 @@
 //! opposite vertex `j` in `n`. Up to about two million points the records are packed into
 //! 24 bytes (21 bits per vertex, 26 per adjacency field) at fixed bit positions; beyond,
 //! or if the tetrahedra outgrow 2^24, two `[u32; 4]` arrays (32 bytes) take over (see
-//! `packed.rs`). The result keeps the same records, so it is as compact.
+//! `packed/`). The result keeps the same records, so it is as compact.
 //!
 //! An infinite tetrahedron `(a, b, c, ∞)` is in conflict with `p` when `p` is strictly
 //! beyond the hull face `abc`, or on its plane and in conflict with the finite tetrahedron

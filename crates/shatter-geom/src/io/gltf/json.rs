@@ -1,6 +1,6 @@
 //! The parts of a glTF 2.0 document the reader uses, deserialized leniently (unknown
 //! fields ignored, absent ones defaulted). Indices are plain numbers here: every one is
-//! checked where it is followed (see `accessor.rs` and `read.rs`), so a malformed file
+//! checked where it is followed (see `accessor.rs` and `read/`), so a malformed file
 //! is an error naming the index, never a panic.
 
 use std::collections::BTreeMap;

@@ -3,19 +3,23 @@
 //! materials with their base-colour textures (embedded in the GLB, data URIs or external
 //! files).
 
+mod materials;
+mod primitive;
+
 use std::collections::HashMap;
 use std::sync::Arc;
 
 use glam::{DMat3, DMat4, DQuat, DVec3};
 
-use super::accessor::{self, Expect};
-use super::container::{self, Uri};
+use super::container;
 use super::json::{self, Root};
 use crate::TriMesh;
-use crate::io::image::{self, ImageCache};
 use crate::io::load::{MAX_TRIANGLES, ReadContext};
 use crate::io::{MeshIoError, WarningKind};
-use crate::model::{Corners, Image, Material, Model, Texture};
+use crate::model::{Corners, Material, Model};
+pub(crate) use materials::Materials;
+use materials::default_material;
+pub(crate) use primitive::{Decoded, decode_primitive};
 
 /// The most node instances followed (a node tree may share subtrees, so instances can
 /// grow exponentially with the number of nodes).
@@ -28,20 +32,6 @@ const GEOMETRY_EXTENSIONS: [&str; 3] = [
     "EXT_meshopt_compression",
     "KHR_meshopt_compression",
 ];
-
-const FLOAT: u32 = 5126;
-const INTEGERS_AND_FLOAT: &[u32] = &[5120, 5121, 5122, 5123, 5125, FLOAT];
-
-/// A primitive's vertex data, decoded once and instanced at every node that uses it.
-pub(crate) struct Decoded {
-    pub positions: Vec<[f32; 3]>,
-    pub normals: Option<Vec<[f32; 3]>>,
-    pub uvs: Option<Vec<[f32; 2]>>,
-    pub colors: Option<Vec<[f32; 4]>>,
-    /// Triangles as vertex indices, wound as in the file.
-    pub triangles: Vec<[u32; 3]>,
-    pub material: Option<usize>,
-}
 
 struct Reader<'a, 'c> {
     cx: &'c mut ReadContext<'a>,
@@ -101,129 +91,6 @@ impl Reader<'_, '_> {
         self.decoded.insert(m, out.clone());
         Ok(out)
     }
-}
-
-/// Decodes a triangle primitive (`mode` 4, 5 or 6) into its vertex data and triangles,
-/// every accessor and index checked; the error message names `what`.
-pub(crate) fn decode_primitive(
-    root: &Root,
-    buffers: &[Result<Vec<u8>, String>],
-    prim: &json::Primitive,
-    what: &str,
-    mode: u32,
-) -> Result<Decoded, String> {
-    let attribute = |name: &str| prim.attributes.get(name).copied();
-    let position = attribute("POSITION").ok_or_else(|| format!("{what} has no POSITION"))?;
-    let vec3 = Expect {
-        kinds: &["VEC3"],
-        codes: INTEGERS_AND_FLOAT,
-        normalized_ints: false,
-    };
-    let positions = accessor::view(root, buffers, position, &format!("{what} POSITION"), &vec3)?;
-    let count = positions.count;
-    let same_count = |v: &accessor::View<'_>, name: &str| {
-        if v.count == count {
-            Ok(())
-        } else {
-            Err(format!(
-                "{what} {name} has {} elements, POSITION has {count}",
-                v.count
-            ))
-        }
-    };
-    let normals = match attribute("NORMAL") {
-        Some(i) => {
-            let v = accessor::view(root, buffers, i, &format!("{what} NORMAL"), &vec3)?;
-            same_count(&v, "NORMAL")?;
-            Some(v.floats::<3>())
-        }
-        None => None,
-    };
-    let uvs = match attribute("TEXCOORD_0") {
-        Some(i) => {
-            let expect = Expect {
-                kinds: &["VEC2"],
-                codes: &[5121, 5123, FLOAT],
-                normalized_ints: true,
-            };
-            let v = accessor::view(root, buffers, i, &format!("{what} TEXCOORD_0"), &expect)?;
-            same_count(&v, "TEXCOORD_0")?;
-            Some(v.floats::<2>())
-        }
-        None => None,
-    };
-    let colors = match attribute("COLOR_0") {
-        Some(i) => {
-            let expect = Expect {
-                kinds: &["VEC3", "VEC4"],
-                codes: &[5121, 5123, FLOAT],
-                normalized_ints: true,
-            };
-            let v = accessor::view(root, buffers, i, &format!("{what} COLOR_0"), &expect)?;
-            same_count(&v, "COLOR_0")?;
-            Some(v.floats_padded::<4>(1.0))
-        }
-        None => None,
-    };
-    let indices: Vec<u32> = match prim.indices {
-        Some(i) => {
-            let expect = Expect {
-                kinds: &["SCALAR"],
-                codes: &[5121, 5123, 5125],
-                normalized_ints: false,
-            };
-            let v = accessor::view(root, buffers, i, &format!("{what} indices"), &expect)?;
-            let ix = v.indices();
-            if let Some(&bad) = ix.iter().find(|&&k| k as usize >= count) {
-                return Err(format!(
-                    "{what} indices reference vertex {bad}, but POSITION has {count}"
-                ));
-            }
-            ix
-        }
-        None => (0..count as u32).collect(),
-    };
-    let triangles: Vec<[u32; 3]> = match mode {
-        5 => indices
-            .windows(3)
-            .enumerate()
-            .map(|(k, w)| {
-                if k % 2 == 0 {
-                    [w[0], w[1], w[2]]
-                } else {
-                    [w[1], w[0], w[2]]
-                }
-            })
-            // Repeated corners stitch strips together; they are no triangles.
-            .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
-            .collect(),
-        6 => indices
-            .get(1..)
-            .unwrap_or(&[])
-            .windows(2)
-            .map(|w| [indices[0], w[0], w[1]])
-            .collect(),
-        _ => indices
-            .chunks_exact(3)
-            .map(|t| [t[0], t[1], t[2]])
-            .collect(),
-    };
-    if let Some(m) = prim.material
-        && m >= root.materials.len()
-    {
-        return Err(format!(
-            "{what} names material {m}, but the file has {} materials",
-            root.materials.len()
-        ));
-    }
-    Ok(Decoded {
-        positions: positions.floats::<3>(),
-        normals,
-        uvs,
-        colors,
-        triangles,
-        material: prim.material,
-    })
 }
 
 impl Reader<'_, '_> {
@@ -357,193 +224,6 @@ fn local_transform(node: &json::Node) -> Result<DMat4, String> {
         return Err("its transform is not finite".into());
     }
     Ok(m)
-}
-
-/// The glTF default material (spec: white, metallic 1, roughness 1).
-fn default_material() -> Material {
-    Material {
-        name: "default".into(),
-        base_color: [1.0; 4],
-        base_color_texture: None,
-        metallic: 1.0,
-        roughness: 1.0,
-    }
-}
-
-/// The materials of a document, read on demand (each image decoded once).
-pub(crate) struct Materials<'r> {
-    root: &'r Root,
-    images: Vec<Option<Option<Arc<Image>>>>,
-    cache: ImageCache,
-}
-
-impl<'r> Materials<'r> {
-    /// Nothing read yet.
-    pub(crate) fn new(root: &'r Root) -> Materials<'r> {
-        Materials {
-            root,
-            images: vec![None; root.images.len()],
-            cache: ImageCache::default(),
-        }
-    }
-
-    fn image(
-        &mut self,
-        cx: &mut ReadContext<'_>,
-        buffers: &[Result<Vec<u8>, String>],
-        index: usize,
-        what: &str,
-    ) -> Option<Arc<Image>> {
-        if let Some(Some(done)) = self.images.get(index) {
-            return done.clone();
-        }
-        let Some(img) = self.root.images.get(index) else {
-            cx.warn(
-                WarningKind::BadFile,
-                1,
-                format!("{what}: image {index} does not exist; dropped"),
-            );
-            return None;
-        };
-        let name = img.name.clone().unwrap_or_else(|| format!("image_{index}"));
-        let loaded = match (&img.uri, img.buffer_view) {
-            (_, Some(view)) => match accessor::view_bytes(self.root, buffers, view) {
-                Ok(bytes) => image::from_bytes(cx, bytes.to_vec(), name, None, what),
-                Err(e) => {
-                    cx.warn(
-                        WarningKind::BadFile,
-                        1,
-                        format!("{what}: image {index}: {e}; dropped"),
-                    );
-                    None
-                }
-            },
-            (Some(uri), None) => match container::resolve(cx, uri) {
-                Ok(Uri::Data(bytes)) => image::from_bytes(cx, bytes, name, None, what),
-                Ok(Uri::File(path)) => self.cache.load(cx, &path, what),
-                Err(e) => {
-                    cx.warn(
-                        WarningKind::BadFile,
-                        1,
-                        format!("{what}: image {index}: {e}; dropped"),
-                    );
-                    None
-                }
-            },
-            (None, None) => {
-                cx.warn(
-                    WarningKind::BadFile,
-                    1,
-                    format!("{what}: image {index} has neither uri nor bufferView; dropped"),
-                );
-                None
-            }
-        };
-        if let Some(slot) = self.images.get_mut(index) {
-            *slot = Some(loaded.clone());
-        }
-        loaded
-    }
-
-    fn texture(
-        &mut self,
-        cx: &mut ReadContext<'_>,
-        buffers: &[Result<Vec<u8>, String>],
-        info: &json::TextureInfo,
-        what: &str,
-    ) -> Option<Texture> {
-        if info.tex_coord != 0 {
-            cx.warn(
-                WarningKind::Unsupported,
-                1,
-                format!("{what}: its texture uses TEXCOORD_{}; only TEXCOORD_0 is read, so the texture is dropped", info.tex_coord),
-            );
-            return None;
-        }
-        if info.extensions.contains_key("KHR_texture_transform") {
-            cx.warn(
-                WarningKind::Unsupported,
-                1,
-                format!("{what}: KHR_texture_transform is ignored"),
-            );
-        }
-        let Some(texture) = self.root.textures.get(info.index) else {
-            cx.warn(
-                WarningKind::BadFile,
-                1,
-                format!("{what}: texture {} does not exist; dropped", info.index),
-            );
-            return None;
-        };
-        let Some(source) = texture.source else {
-            cx.warn(
-                WarningKind::Unsupported,
-                1,
-                format!(
-                    "{what}: texture {} has no PNG or JPEG source (only an extension's); dropped",
-                    info.index
-                ),
-            );
-            return None;
-        };
-        self.image(cx, buffers, source, what)
-            .map(|image| Texture { image })
-    }
-
-    /// Material `index` (which must exist), with its texture.
-    pub(crate) fn material(
-        &mut self,
-        cx: &mut ReadContext<'_>,
-        buffers: &[Result<Vec<u8>, String>],
-        index: usize,
-    ) -> Material {
-        let m = &self.root.materials[index];
-        let name = m
-            .name
-            .clone()
-            .unwrap_or_else(|| format!("material_{index}"));
-        let what = format!("material {index} '{name}'");
-        let mut out = Material {
-            name,
-            ..default_material()
-        };
-        if let Some(pbr) = &m.pbr_metallic_roughness {
-            out.base_color = pbr.base_color_factor.unwrap_or([1.0; 4]);
-            out.metallic = pbr.metallic_factor.unwrap_or(1.0);
-            out.roughness = pbr.roughness_factor.unwrap_or(1.0);
-            if let Some(info) = &pbr.base_color_texture {
-                out.base_color_texture = self.texture(cx, buffers, info, &what);
-            }
-        } else if let Some(sg) = m.extensions.get("KHR_materials_pbrSpecularGlossiness") {
-            // Its diffuse is the closest thing to a base colour.
-            match serde_json::from_value::<json::SpecularGlossiness>(sg.clone()) {
-                Ok(sg) => {
-                    out.base_color = sg.diffuse_factor.unwrap_or([1.0; 4]);
-                    out.metallic = 0.0;
-                    out.roughness = 0.5;
-                    if let Some(info) = &sg.diffuse_texture {
-                        out.base_color_texture = self.texture(cx, buffers, info, &what);
-                    }
-                }
-                Err(e) => cx.warn(
-                    WarningKind::BadFile,
-                    1,
-                    format!("{what}: unreadable KHR_materials_pbrSpecularGlossiness: {e}"),
-                ),
-            }
-        }
-        let clamp = |v: f32| {
-            if v.is_finite() {
-                v.clamp(0.0, 1.0)
-            } else {
-                1.0
-            }
-        };
-        out.base_color = out.base_color.map(clamp);
-        out.metallic = clamp(out.metallic);
-        out.roughness = clamp(out.roughness);
-        out
-    }
 }
 
 pub(crate) fn read_gltf(bytes: &[u8], cx: &mut ReadContext<'_>) -> Result<Model, MeshIoError> {
