@@ -13,7 +13,7 @@ use bevy_shatter::{
     Breakable, BreakableError, FractureAsset, FractureFailed, Fractured, ShatterObject,
     ShatterPlugin, ShatterSystems,
 };
-use shatter_geom::fracture::{FractureParams, Method, Pattern, Seeds, fracture};
+use shatter_geom::fracture::{FractureParams, Method, Seeds, fracture};
 use shatter_geom::io::{
     BreakThresholds, ExportObject, FractureAssetMeta, read_fracture, save_fracture_glb, save_glb,
 };
