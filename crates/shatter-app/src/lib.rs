@@ -22,6 +22,7 @@ pub mod autotest;
 pub mod camera;
 pub mod commands;
 pub mod input;
+pub mod picked_files;
 pub mod render;
 pub mod scene_store;
 pub mod sim_bridge;

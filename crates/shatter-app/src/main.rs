@@ -20,7 +20,7 @@ const USAGE: &str = "usage: shatter-app [--autotest DIR]";
 #[cfg(target_arch = "wasm32")]
 #[wasm_bindgen::prelude::wasm_bindgen]
 pub fn add_mesh(name: String, bytes: Vec<u8>) -> String {
-    let files = shatter_geom::io::shared_files();
+    let files = &**shatter_app::picked_files::picked_files();
     let Some(format) = shatter_geom::io::MeshFormat::from_path(&name) else {
         const COMPANIONS: [&str; 5] = ["bin", "mtl", "png", "jpg", "jpeg"];
         let ext = std::path::Path::new(&name)

@@ -138,8 +138,10 @@ impl Default for SimBridge {
 }
 
 impl SimBridge {
-    /// A bridge over an existing world.
-    pub fn from_world(world: World) -> Self {
+    /// A bridge over an existing world, which from now on reads mesh files from the
+    /// web page's picked files before the disk ([`crate::picked_files`]).
+    pub fn from_world(mut world: World) -> Self {
+        world.set_files(crate::picked_files::picked_files().clone());
         Self {
             world,
             bond_model: None,
@@ -162,7 +164,9 @@ impl SimBridge {
     /// A bridge over the world of a scene file's text.
     pub fn from_scene_text(text: &str) -> Result<Self, String> {
         let scene = Scene::parse(text).map_err(|e| e.to_string())?;
-        let world = scene.build(None).map_err(|e| e.to_string())?;
+        let world = scene
+            .build_with_files(None, crate::picked_files::picked_files().clone())
+            .map_err(|e| e.to_string())?;
         Ok(Self::from_world(world))
     }
 
@@ -270,7 +274,9 @@ impl SimBridge {
             // From the file, so mesh paths resolve relative to the scene's folder.
             Scene::load(path).map_err(|e| e.to_string())?
         };
-        let world = scene.build(self.bond_model).map_err(|e| e.to_string())?;
+        let world = scene
+            .build_with_files(self.bond_model, crate::picked_files::picked_files().clone())
+            .map_err(|e| e.to_string())?;
         self.world = world;
         self.accumulator = 0.0;
         self.new_build();
@@ -288,7 +294,9 @@ impl SimBridge {
             ));
         };
         let scene = Scene::parse(text).map_err(|e| format!("{name}.toml: {e}"))?;
-        let world = scene.build(self.bond_model).map_err(|e| e.to_string())?;
+        let world = scene
+            .build_with_files(self.bond_model, crate::picked_files::picked_files().clone())
+            .map_err(|e| e.to_string())?;
         self.world = world;
         self.accumulator = 0.0;
         self.new_build();
@@ -479,8 +487,8 @@ pub fn check_custom_mesh(path: &Path) -> Result<(), String> {
             path.display()
         ));
     }
-    // A mesh picked in the web page lives in memory (shatter_geom::io::shared_files).
-    if !shatter_geom::io::shared_files().contains(path) {
+    // A mesh picked in the web page lives in memory.
+    if !crate::picked_files::picked_files().contains(path) {
         let meta = std::fs::metadata(path).map_err(|e| {
             if cfg!(target_arch = "wasm32") {
                 format!(
@@ -495,7 +503,8 @@ pub fn check_custom_mesh(path: &Path) -> Result<(), String> {
             return Err(format!("'{}' is not a file", path.display()));
         }
     }
-    let mesh = shatter_geom::io::load_mesh(path).map_err(|e| e.to_string())?;
+    let mesh = shatter_geom::io::load_mesh_from(path, &crate::picked_files::sources())
+        .map_err(|e| e.to_string())?;
     if mesh.triangles.is_empty() {
         return Err(format!("'{}' has no triangles", path.display()));
     }

@@ -137,7 +137,8 @@ pub fn from_sim_spec(spec: &SimSpec) -> ObjectSpec {
 pub fn projectile_points(shape: &ShapeChoice) -> Result<Vec<DVec3>, String> {
     let mesh = match shape {
         ShapeChoice::Custom(path) => {
-            shatter_geom::io::load_mesh(path).map_err(|e| format!("projectile: {e}"))?
+            shatter_geom::io::load_mesh_from(path, &crate::picked_files::sources())
+                .map_err(|e| format!("projectile: {e}"))?
         }
         ShapeChoice::Builtin(shape) => shape.mesh(),
     };

@@ -218,16 +218,23 @@ fn editing_a_scene_object_keeps_what_the_panels_do_not_show() {
 fn a_refused_object_changes_nothing_and_says_why() {
     let mut b = SimBridge::default_scene();
     let before = b.stats();
-    // A grid only cuts boxes.
+    // A mesh file that does not exist: the message names it.
     let err = b
         .apply(SimCommand::AddObject(ObjectSpec {
-            shape: ShapeChoice::Builtin(Shape::Bird),
-            method: MethodKind::Grid,
+            shape: ShapeChoice::Custom("no/such/mesh.obj".into()),
             ..cube_spec(DVec3::ZERO)
         }))
         .unwrap_err();
-    assert!(!err.is_empty());
+    assert!(err.contains("no/such/mesh.obj"), "{err}");
     assert_eq!(b.stats(), before);
+    // A grid of the bird is its cells clipped to it, not a refusal.
+    let added = b.apply(SimCommand::AddObject(ObjectSpec {
+        shape: ShapeChoice::Builtin(Shape::Bird),
+        method: MethodKind::Grid,
+        ..cube_spec(DVec3::new(0.0, 3.0, 0.0))
+    }));
+    assert!(matches!(added, Ok(Some(_))), "{added:?}");
+    assert!(b.stats().fragments > before.fragments);
     // An explosion with a negative radius is refused.
     assert!(
         b.apply(SimCommand::Explode {

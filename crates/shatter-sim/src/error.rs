@@ -1,9 +1,25 @@
 //! The simulation's error type.
 
+use shatter_geom::fracture::FractureError;
+use shatter_geom::io::MeshIoError;
+use shatter_geom::mesh::repair::RepairError;
 use thiserror::Error;
 
 /// Everything that can go wrong when building or editing a simulation.
-#[derive(Debug, Error, Clone, PartialEq)]
+///
+/// The library errors it comes from stay its [`source`](std::error::Error::source):
+///
+/// ```
+/// use std::error::Error;
+/// use shatter_sim::{FractureSource, ObjectSpec, SimError, World, WorldSettings};
+/// let mut world = World::new(WorldSettings::default());
+/// let mut spec = ObjectSpec::from_fracture(Default::default(), [0.0; 3].into());
+/// spec.source = FractureSource::MeshFile { path: "no/such.obj".into(), params: Default::default() };
+/// let e = world.add_object(spec).unwrap_err();
+/// assert!(matches!(e, SimError::Mesh { .. }));
+/// assert!(e.source().unwrap().downcast_ref::<shatter_geom::io::MeshIoError>().is_some());
+/// ```
+#[derive(Debug, Error)]
 pub enum SimError {
     /// A parameter has a value outside its domain; `key` names it (e.g. `objects[2].scale`).
     #[error("{key}: {reason}")]
@@ -43,13 +59,34 @@ pub enum SimError {
         /// Why.
         reason: String,
     },
-    /// The fracture method cannot be run (e.g. not available in this build) or failed.
-    #[error("{key}: fracture failed: {reason}")]
+    /// The fracture failed (the mesh or the parameters); `key` names the object.
+    #[error("{key}: fracture failed: {source}")]
     Fracture {
+        /// The object key (or `….roughness` for the roughening of its cut faces).
+        key: String,
+        /// What the fracture reported.
+        #[source]
+        source: FractureError,
+    },
+    /// An object's mesh file could not be repaired into a solid.
+    #[error("{key}: {path}: {source}")]
+    Repair {
         /// The object key.
         key: String,
-        /// The reason reported by the fracture code.
-        reason: String,
+        /// The mesh file.
+        path: String,
+        /// What the repair reported.
+        #[source]
+        source: RepairError,
+    },
+    /// A mesh file could not be read or parsed.
+    #[error("{path}: {}", mesh_reason(path, source))]
+    Mesh {
+        /// The file.
+        path: String,
+        /// What the reader reported (its message names the file too; shown once).
+        #[source]
+        source: MeshIoError,
     },
     /// A scene file could not be parsed; `line` and `column` are 1-based.
     #[error("line {line}, column {column}: {message}")]
@@ -62,12 +99,13 @@ pub enum SimError {
         message: String,
     },
     /// A file could not be read.
-    #[error("{path}: {reason}")]
+    #[error("{path}: {source}")]
     Io {
         /// The file.
         path: String,
         /// The OS error.
-        reason: String,
+        #[source]
+        source: std::io::Error,
     },
     /// No object has this id.
     #[error("no object with id {0}")]
@@ -82,4 +120,22 @@ impl SimError {
             reason: reason.into(),
         }
     }
+
+    /// A mesh file's error, its file named once.
+    pub fn mesh(path: impl Into<String>, source: MeshIoError) -> Self {
+        SimError::Mesh {
+            path: path.into(),
+            source,
+        }
+    }
+}
+
+/// The reader's message without its leading `path: ` (the error prints the path itself).
+fn mesh_reason(path: &str, e: &MeshIoError) -> String {
+    let message = e.to_string();
+    message
+        .strip_prefix(path)
+        .and_then(|r| r.strip_prefix(": "))
+        .unwrap_or(&message)
+        .to_string()
 }

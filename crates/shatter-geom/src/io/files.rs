@@ -20,7 +20,7 @@
 
 use std::collections::BTreeMap;
 use std::path::{Component, Path, PathBuf};
-use std::sync::{Arc, OnceLock, PoisonError, RwLock};
+use std::sync::{Arc, PoisonError, RwLock};
 
 /// Something the readers can read files from.
 pub trait FileSource {
@@ -165,28 +165,6 @@ fn normalize(path: &Path) -> PathBuf {
     path.components()
         .filter(|c| !matches!(c, Component::CurDir))
         .collect()
-}
-
-/// The process's shared in-memory files, which [`load_model`](super::load_model) and
-/// [`load_mesh`](super::load_mesh) read before the file system.
-///
-/// This is how the web build, which has no file system, takes the files a user picks in
-/// the page: the simulation loads a custom object's mesh by its name, so the files must be
-/// where a plain load by name finds them. Code that has the bytes at hand should pass a
-/// [`MemoryFiles`] of its own to [`load_model_from`](super::load_model_from) or
-/// [`parse_model_with`](super::parse_model_with) instead.
-///
-/// ```
-/// use shatter_geom::io;
-/// let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
-/// io::shared_files().insert("picked/tet.obj", obj.to_vec());
-/// assert_eq!(io::load_mesh("picked/tet.obj").unwrap().triangles.len(), 4);
-/// assert!(io::shared_files().remove("picked/tet.obj"));
-/// assert!(io::load_mesh("picked/tet.obj").is_err());
-/// ```
-pub fn shared_files() -> &'static MemoryFiles {
-    static FILES: OnceLock<MemoryFiles> = OnceLock::new();
-    FILES.get_or_init(MemoryFiles::new)
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use super::files::{FileSource, FileSystem, Layered, NoFiles, shared_files};
+use super::files::{FileSource, FileSystem, NoFiles};
 use super::{LoadWarning, MeshIoError, WarningKind, gltf, obj, stl};
 use crate::TriMesh;
 use crate::model::{Model, ModelError};
@@ -114,8 +114,8 @@ impl<'a> ReadContext<'a> {
 
 /// Loads a model — mesh, UVs, normals, colours, materials and their textures — from an
 /// `.obj` (with its MTL files), `.stl`, `.gltf` or `.glb` file. Files it refers to are
-/// read relative to its folder. Files registered in [`shared_files`] are read from
-/// memory before the file system. See `docs/formats.md` for what each reader takes.
+/// read relative to its folder, from the file system ([`load_model_from`] reads them
+/// from any [`FileSource`]). See `docs/formats.md` for what each reader takes.
 ///
 /// ```
 /// use shatter_geom::{io, shapes};
@@ -129,7 +129,7 @@ impl<'a> ReadContext<'a> {
 /// assert!(loaded.warnings.is_empty());
 /// ```
 pub fn load_model(path: impl AsRef<Path>) -> Result<LoadedModel, MeshIoError> {
-    load_model_from(path, &Layered(shared_files(), FileSystem))
+    load_model_from(path, &FileSystem)
 }
 
 /// [`load_model`], reading the file and every file it refers to from `files`.
@@ -206,6 +206,42 @@ pub fn parse_model_with(
 /// ```
 pub fn load_mesh(path: impl AsRef<Path>) -> Result<TriMesh, MeshIoError> {
     load_model(path).map(|l| l.model.mesh)
+}
+
+/// [`load_mesh`], reading the file and every file it refers to from `files`.
+///
+/// ```
+/// use shatter_geom::io::{self, FileSystem, Layered, MemoryFiles};
+/// let picked = MemoryFiles::new();
+/// picked.insert("picked/tri.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".to_vec());
+/// // The picked files first, then the disk.
+/// let mesh = io::load_mesh_from("picked/tri.obj", &Layered(&picked, FileSystem)).unwrap();
+/// assert_eq!(mesh.triangles.len(), 1);
+/// assert!(io::load_mesh("picked/tri.obj").is_err());
+/// ```
+pub fn load_mesh_from(
+    path: impl AsRef<Path>,
+    files: &dyn FileSource,
+) -> Result<TriMesh, MeshIoError> {
+    load_model_from(path, files).map(|l| l.model.mesh)
+}
+
+/// The mesh of a file's bytes, its format from `name`'s extension (see [`parse_mesh`];
+/// files it refers to are not read).
+///
+/// ```
+/// use shatter_geom::io;
+/// let tet = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+/// assert_eq!(io::load_mesh_from_bytes("tet.obj", tet).unwrap().triangles.len(), 4);
+/// let err = io::load_mesh_from_bytes("tet.txt", tet).unwrap_err();
+/// assert!(err.to_string().contains("tet.txt"), "{err}");
+/// ```
+pub fn load_mesh_from_bytes(name: impl AsRef<Path>, bytes: &[u8]) -> Result<TriMesh, MeshIoError> {
+    let name = name.as_ref();
+    let format = MeshFormat::from_path(name).ok_or_else(|| MeshIoError::UnknownFormat {
+        path: name.to_path_buf(),
+    })?;
+    parse_mesh(bytes, format, name)
 }
 
 /// Parses the mesh of a file held in memory (see [`parse_model`]).

@@ -5,7 +5,9 @@
 //! GLB 2.0, dispatching on the extension, with a list of [`LoadWarning`]s for what it
 //! tolerated; [`parse_model`] and [`parse_model_with`] read from memory, with the files
 //! the model refers to (MTL, textures, `.bin`) from a [`FileSource`] such as
-//! [`MemoryFiles`]. [`load_mesh`] and [`parse_mesh`] return the mesh alone.
+//! [`MemoryFiles`]. [`load_mesh`], [`load_mesh_from`], [`load_mesh_from_bytes`] and
+//! [`parse_mesh`] return the mesh alone. Nothing is global: a program holding files in
+//! memory (the web page's picked files) passes them as a [`FileSource`].
 //! `docs/formats.md` lists what each reader takes.
 //!
 //! Export: [`write_obj`] / [`save_obj`] (with an MTL file; `*_with_materials` with the
@@ -49,7 +51,7 @@ pub use export::{
     ExportObject, INTERIOR_COLOR, INTERIOR_MATERIAL, SURFACE_COLOR, SURFACE_MATERIAL,
     fragment_names,
 };
-pub use files::{FileSource, FileSystem, Layered, MemoryFiles, NoFiles, shared_files};
+pub use files::{FileSource, FileSystem, Layered, MemoryFiles, NoFiles};
 pub use gltf::{
     BreakThresholds, FRACTURE_EXTENSION, FRACTURE_EXTENSION_VERSION, FractureAssetMeta, GlbBuilder,
     parse_fracture, read_fracture, save_fracture_glb, save_glb, save_glb_with_materials,
@@ -57,8 +59,8 @@ pub use gltf::{
 };
 pub use inspect::{Inspection, MaterialReport, ShellReport, inspect};
 pub use load::{
-    LoadedModel, MAX_TRIANGLES, MeshFormat, load_mesh, load_model, load_model_from, parse_mesh,
-    parse_model, parse_model_with,
+    LoadedModel, MAX_TRIANGLES, MeshFormat, load_mesh, load_mesh_from, load_mesh_from_bytes,
+    load_model, load_model_from, parse_mesh, parse_model, parse_model_with,
 };
 pub use obj::{
     TextureFile, save_obj, save_obj_with_materials, texture_files, write_mtl,

@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use glam::Vec3;
 use shatter_geom::fracture::{Bond, Fracture, Fragment, Roughness};
+use shatter_geom::io::FileSource;
 use shatter_geom::model::{Corners, Model};
 use shatter_geom::{DMat3, DVec3, TriMesh};
 
@@ -29,10 +30,15 @@ pub struct Prepared {
 }
 
 /// Resolves the fracture of `spec` (unscaled): its fragments, or for an `on_impact`
-/// object its intact body as one fragment ([`crate::runtime::whole`]).
-pub fn resolve_fracture(spec: &ObjectSpec, key: &str) -> Result<Arc<Fracture>, SimError> {
+/// object its intact body as one fragment ([`crate::runtime::whole`]). A mesh file and
+/// the files it refers to are read from `files`.
+pub fn resolve_fracture(
+    spec: &ObjectSpec,
+    key: &str,
+    files: &dyn FileSource,
+) -> Result<Arc<Fracture>, SimError> {
     if spec.runtime.timing == FractureTiming::OnImpact {
-        return resolve_whole(spec, key);
+        return resolve_whole(spec, key, files);
     }
     match &spec.source {
         FractureSource::Prebuilt(f) => Ok(f.clone()),
@@ -46,7 +52,7 @@ pub fn resolve_fracture(spec: &ObjectSpec, key: &str) -> Result<Arc<Fracture>, S
         FractureSource::MeshFile { path, params } => {
             let method = params.method.unwrap_or(spec.material.method);
             let pattern = params.pattern.unwrap_or(spec.material.pattern);
-            let model = file_model(path, key)?;
+            let model = file_model(path, key, files)?;
             let rough = local_roughness(spec);
             geom_fracture(Input::Model(&model), params, method, pattern, &rough, key)
         }
@@ -56,30 +62,35 @@ pub fn resolve_fracture(spec: &ObjectSpec, key: &str) -> Result<Arc<Fracture>, S
 /// A mesh file's model, repaired into a closed solid as `shatter fracture` repairs it
 /// (cracks welded, holes filled, open sheets dropped, crossing parts joined): a user's
 /// own model, open in places or made of parts, is what the Custom object takes.
-fn file_model(path: &str, key: &str) -> Result<Model, SimError> {
-    let model = shatter_geom::io::load_model(path)
-        .map_err(|e| crate::scene::load::mesh_error(path, &e))?
+fn file_model(path: &str, key: &str, files: &dyn FileSource) -> Result<Model, SimError> {
+    let model = shatter_geom::io::load_model_from(path, files)
+        .map_err(|e| SimError::mesh(path, e))?
         .model;
     let options = shatter_geom::mesh::repair::RepairOptions::default();
     shatter_geom::mesh::repair::repair(&model, &options)
         .map(|(model, _)| model)
-        .map_err(|e| SimError::Fracture {
+        .map_err(|source| SimError::Repair {
             key: key.to_string(),
-            reason: format!("{path}: {e}"),
+            path: path.to_string(),
+            source,
         })
 }
 
 /// The intact body of an `on_impact` object: its model (with UVs, normals and materials
 /// where the file has them) as a single fragment.
-fn resolve_whole(spec: &ObjectSpec, key: &str) -> Result<Arc<Fracture>, SimError> {
+fn resolve_whole(
+    spec: &ObjectSpec,
+    key: &str,
+    files: &dyn FileSource,
+) -> Result<Arc<Fracture>, SimError> {
     let model = match &spec.source {
         FractureSource::Prebuilt(f) => return Ok(f.clone()),
         FractureSource::Shape { shape, .. } => Model::from_mesh(shape.mesh()),
-        FractureSource::MeshFile { path, .. } => file_model(path, key)?,
+        FractureSource::MeshFile { path, .. } => file_model(path, key, files)?,
     };
-    let whole = crate::runtime::whole(&model).map_err(|e| SimError::Fracture {
+    let whole = crate::runtime::whole(&model).map_err(|source| SimError::Fracture {
         key: key.to_string(),
-        reason: e.to_string(),
+        source,
     })?;
     Ok(Arc::new(whole))
 }
@@ -150,16 +161,16 @@ fn geom_fracture(
         Input::Mesh(mesh) => geom::fracture(mesh, &params),
         Input::Model(model) => geom::fracture_model(model, &params),
     }
-    .map_err(|e| SimError::Fracture {
+    .map_err(|source| SimError::Fracture {
         key: key.to_string(),
-        reason: e.to_string(),
+        source,
     })?;
     let mut fracture = fracture;
     // A grid's joints stay flat: masonry, whatever its material's roughness.
     if !rough.is_off() && method_kind != MethodKind::Grid {
-        geom::roughen(&mut fracture, rough).map_err(|e| SimError::Fracture {
+        geom::roughen(&mut fracture, rough).map_err(|source| SimError::Fracture {
             key: format!("{key}.roughness"),
-            reason: e.to_string(),
+            source,
         })?;
     }
     Ok(Arc::new(fracture))

@@ -1,6 +1,7 @@
 //! Parsing and validating a scene file into typed specs, and building its world.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use glam::{EulerRot, Quat, Vec3};
 use toml::Spanned;
@@ -9,6 +10,7 @@ use crate::error::SimError;
 use crate::runtime::RuntimeFracture;
 use std::str::FromStr;
 
+use shatter_geom::io::MemoryFiles;
 use shatter_geom::shapes::Shape;
 use shatter_geom::vocab::UnknownWord;
 
@@ -83,7 +85,7 @@ impl Scene {
     pub fn load(path: &Path) -> Result<Scene, SimError> {
         let text = std::fs::read_to_string(path).map_err(|e| SimError::Io {
             path: path.display().to_string(),
-            reason: e.to_string(),
+            source: e,
         })?;
         Self::parse_in(&text, path.parent().map(Path::to_path_buf))
     }
@@ -170,13 +172,25 @@ impl Scene {
     }
 
     /// Builds the world: objects added in file order (ids 0, 1, …), actions scheduled.
-    /// `bond_model` overrides every object's model (the CLI's `--bonds`).
+    /// `bond_model` overrides every object's model (the CLI's `--bonds`). Mesh files are
+    /// read from the disk.
     pub fn build(&self, bond_model: Option<BondModel>) -> Result<World, SimError> {
+        self.build_with_files(bond_model, Arc::default())
+    }
+
+    /// [`Scene::build`], the world reading mesh files from `files` before the disk
+    /// ([`World::files`]).
+    pub fn build_with_files(
+        &self,
+        bond_model: Option<BondModel>,
+        files: Arc<MemoryFiles>,
+    ) -> Result<World, SimError> {
         let mut settings = self.settings;
         if let Some(m) = bond_model {
             settings.bond_model = m;
         }
         let mut world = World::new(settings);
+        world.set_files(files);
         for (i, spec) in self.objects.iter().enumerate() {
             let mut spec = spec.clone();
             if bond_model.is_some() {
@@ -187,9 +201,9 @@ impl Scene {
                     key: key.replace(&format!("object {i}"), &format!("objects[{i}]")),
                     reason,
                 },
-                SimError::Fracture { key, reason } => SimError::Fracture {
+                SimError::Fracture { key, source } => SimError::Fracture {
                     key: key.replace(&format!("object {i}"), &format!("objects[{i}]")),
-                    reason,
+                    source,
                 },
                 other => other,
             })?;
@@ -201,21 +215,6 @@ impl Scene {
             world.schedule_explosion(*at, *e);
         }
         Ok(world)
-    }
-}
-
-/// A mesh file that did not load, named once: the library's message already starts with
-/// the path ("x.obj: unknown mesh format"), which [`SimError::Io`] prints itself.
-pub(crate) fn mesh_error(path: &str, e: &shatter_geom::io::MeshIoError) -> SimError {
-    let message = e.to_string();
-    let reason = message
-        .strip_prefix(path)
-        .and_then(|r| r.strip_prefix(": "))
-        .unwrap_or(&message)
-        .to_string();
-    SimError::Io {
-        path: path.to_string(),
-        reason,
     }
 }
 
@@ -513,7 +512,7 @@ fn projectile(
     let shape = match (&p.shape, &p.mesh) {
         (_, Some(m)) => {
             let path = ctx.path(m);
-            let mesh = shatter_geom::io::load_mesh(&path).map_err(|e| mesh_error(&path, &e))?;
+            let mesh = shatter_geom::io::load_mesh(&path).map_err(|e| SimError::mesh(&path, e))?;
             ProjectileShape::Custom(mesh.positions)
         }
         (Some(s), None) => {

@@ -313,16 +313,15 @@ impl World {
             .get(body)
             .ok_or_else(|| SimError::invalid(&key, "the fragment's body is gone"))?;
         let impact = rb.position().inverse_transform_point(point).as_dvec3();
-        let fracture =
-            CutInput::of(record, fragment, impact)
-                .run()
-                .map_err(|e| SimError::Fracture {
-                    key: key.clone(),
-                    reason: e.to_string(),
-                })?;
+        let fracture = CutInput::of(record, fragment, impact)
+            .run()
+            .map_err(|source| SimError::Fracture {
+                key: key.clone(),
+                source,
+            })?;
         let child = self
             .replace_fragment(id, fragment, fracture, impact, None)
-            .map_err(|reason| SimError::Fracture { key, reason })?;
+            .map_err(|reason| SimError::EmptyFracture { key, reason })?;
         self.report_breaks();
         self.update_counts();
         Ok(child)

@@ -16,6 +16,7 @@ use crate::object::{BondModel, ExplosionSpec, ObjectSpec, Prepared, ProjectileSp
 use crate::runtime::FractureTiming;
 use crate::world::runtime_step::PendingCut;
 use crate::world::settings::{SimEvent, Stats, WorldSettings};
+use shatter_geom::io::{FileSystem, Layered, MemoryFiles};
 
 /// Identifies a breakable object in a [`World`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -124,6 +125,8 @@ pub struct World {
     pub(crate) reported: BTreeMap<u32, [usize; 3]>,
     /// Runtime cuts under way.
     pub(crate) cuts: Vec<PendingCut>,
+    /// Files read before the disk when an object names a mesh file ([`World::files`]).
+    pub(crate) files: Arc<MemoryFiles>,
 }
 
 // A world is shared between threads (a Bevy resource, a game's system): on every target,
@@ -152,9 +155,38 @@ impl World {
             retired: [0; 3],
             reported: BTreeMap::new(),
             cuts: Vec::new(),
+            files: Arc::default(),
         };
         world.rebuild();
         world
+    }
+
+    /// The files an object's mesh file (and the files it refers to: a `.gltf`'s buffers,
+    /// an OBJ's MTL and textures) is read from before the disk: a program that has the
+    /// bytes (the web page's picked files) puts them here, or shares its own set with
+    /// [`World::set_files`].
+    ///
+    /// ```
+    /// use shatter_sim::{FractureSource, ObjectSpec, World, WorldSettings};
+    /// let mut world = World::new(WorldSettings::default());
+    /// let tet = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    /// world.files().insert("picked/tet.obj", tet.to_vec());
+    /// let mut spec = ObjectSpec::from_fracture(Default::default(), [0.0, 1.0, 0.0].into());
+    /// spec.source = FractureSource::MeshFile {
+    ///     path: "picked/tet.obj".into(),
+    ///     params: Default::default(),
+    /// };
+    /// let id = world.add_object(spec)?;
+    /// assert!(world.object_fracture(id).unwrap().fragments.len() > 1);
+    /// # Ok::<(), shatter_sim::SimError>(())
+    /// ```
+    pub fn files(&self) -> &Arc<MemoryFiles> {
+        &self.files
+    }
+
+    /// Reads mesh files from `files` (before the disk) from now on.
+    pub fn set_files(&mut self, files: Arc<MemoryFiles>) {
+        self.files = files;
     }
 
     /// The settings.
@@ -292,7 +324,7 @@ impl World {
                 "runtime fracture (on_impact, depth > 1) needs the clusters bond model",
             ));
         }
-        let fracture = resolve_fracture(spec, key)?;
+        let fracture = resolve_fracture(spec, key, &Layered(&*self.files, FileSystem))?;
         let prepared = prepare(&fracture, spec.scale, spec.material.density, spec.anchored);
         if prepared.pieces.iter().all(|p| p.is_empty()) {
             return Err(SimError::EmptyFracture {

@@ -12,7 +12,7 @@ use super::{BreakThresholds, FRACTURE_EXTENSION, FRACTURE_EXTENSION_VERSION, Fra
 use crate::TriMesh;
 use crate::fracture::{Bond, Fracture, Fragment};
 use crate::io::MeshIoError;
-use crate::io::files::{FileSource, FileSystem, Layered, NoFiles, shared_files};
+use crate::io::files::{FileSource, FileSystem, NoFiles};
 use crate::io::gltf::accessor::{self, Expect};
 use crate::io::gltf::container;
 use crate::io::gltf::json::{self, Root};
@@ -34,7 +34,7 @@ const FLOAT: u32 = 5126;
 /// glTF is [`MeshIoError::Gltf`]. Never a panic.
 pub fn read_fracture(path: impl AsRef<Path>) -> Result<(Fracture, FractureAssetMeta), MeshIoError> {
     let path = path.as_ref();
-    let files = Layered(shared_files(), FileSystem);
+    let files = FileSystem;
     let bytes = files.read(path).map_err(|e| MeshIoError::io(path, e))?;
     parse(&bytes, path, &files)
 }
