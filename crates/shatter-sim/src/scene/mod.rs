@@ -2,6 +2,7 @@
 //! explosions. The schema is documented in `docs/scene-format.md`.
 
 pub mod budget;
+mod entries;
 pub mod file;
 pub mod load;
 mod save;

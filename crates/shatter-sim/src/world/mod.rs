@@ -7,6 +7,7 @@ mod settings;
 pub(crate) mod state;
 mod step;
 mod stress_step;
+mod upkeep;
 
 pub use query::ProjectileView;
 pub use settings::{BreakCause, SimEvent, Stats, WorldSettings};
