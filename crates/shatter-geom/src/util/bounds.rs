@@ -9,3 +9,17 @@ pub(crate) fn bounds(pos: &[DVec3]) -> (DVec3, DVec3) {
         |(lo, hi), &p| (lo.min(p), hi.max(p)),
     )
 }
+
+/// The eight corners of the box `lo..hi`: corner `i` takes `hi` along x where bit 0 of
+/// `i` is set, along y where bit 1 is, along z where bit 2 is.
+pub(crate) fn box_corners(lo: DVec3, hi: DVec3) -> Vec<DVec3> {
+    (0..8)
+        .map(|i| {
+            DVec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            )
+        })
+        .collect()
+}

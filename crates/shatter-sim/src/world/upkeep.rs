@@ -1,6 +1,8 @@
 //! A step's upkeep after the physics: lifetimes that ended, the guard against bodies
 //! that diverged (NaN or runaway), and the debris cap.
 
+use rapier3d::prelude::RigidBodyHandle;
+
 use crate::bonds::tags::{Kind, untag};
 use crate::world::settings::SimEvent;
 use crate::world::state::{ObjectId, World};
@@ -61,17 +63,7 @@ impl World {
             }
             let object = match untag(data) {
                 Some((Kind::Fragment, object, _)) => {
-                    if let Some(live) = self
-                        .objects
-                        .get_mut(&ObjectId(object))
-                        .and_then(|r| r.live.as_mut())
-                    {
-                        for f in 0..live.body.len() {
-                            if live.body[f] == Some(h) {
-                                live.drop_fragment(f);
-                            }
-                        }
-                    }
+                    self.forget_body(object, h);
                     Some(object)
                 }
                 Some((Kind::Projectile, index, _)) => {
@@ -99,19 +91,24 @@ impl World {
             let Some((object, h)) = self.debris.pop_front() else {
                 break;
             };
-            if let Some(live) = self
-                .objects
-                .get_mut(&ObjectId(object))
-                .and_then(|r| r.live.as_mut())
-            {
-                for f in 0..live.body.len() {
-                    if live.body[f] == Some(h) {
-                        live.drop_fragment(f);
-                    }
-                }
-            }
+            self.forget_body(object, h);
             self.physics.remove_body(h);
             self.stats.debris_removed += 1;
+        }
+    }
+
+    /// Drops the fragments of `object` that body `h` carries (before `h` is removed).
+    fn forget_body(&mut self, object: u32, h: RigidBodyHandle) {
+        if let Some(live) = self
+            .objects
+            .get_mut(&ObjectId(object))
+            .and_then(|r| r.live.as_mut())
+        {
+            for f in 0..live.body.len() {
+                if live.body[f] == Some(h) {
+                    live.drop_fragment(f);
+                }
+            }
         }
     }
 }

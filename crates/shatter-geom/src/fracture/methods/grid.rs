@@ -14,7 +14,7 @@ use crate::TriMesh;
 use crate::fracture::kernel::{Piece, SURFACE, is_surface};
 use crate::fracture::{Bond, Fragment};
 use crate::model::Corners;
-use crate::util::bounds;
+use crate::util::{bounds, box_corners};
 
 /// Bounding boxes whose volume is the mesh's within this relative tolerance are boxes.
 const BOX_VOLUME_TOLERANCE: f64 = 1e-12;
@@ -178,15 +178,7 @@ pub(crate) fn bricks(grid: &Grid) -> (Vec<Fragment>, Vec<Vec<u64>>, Vec<Bond>) {
 fn brick(grid: &Grid, c: [u32; 3]) -> (Fragment, Vec<u64>) {
     let lo = grid.lo + grid.cell * DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64);
     let hi = lo + grid.cell;
-    let pos: Vec<DVec3> = (0..8)
-        .map(|i| {
-            DVec3::new(
-                if i & 1 == 0 { lo.x } else { hi.x },
-                if i & 2 == 0 { lo.y } else { hi.y },
-                if i & 4 == 0 { lo.z } else { hi.z },
-            )
-        })
-        .collect();
+    let pos = box_corners(lo, hi);
     const FACES: [[u32; 4]; 6] = [
         [0, 4, 6, 2],
         [1, 3, 7, 5],

@@ -8,7 +8,7 @@ use crate::fracture::Bond;
 use crate::fracture::bonds::caps::cap_bonds;
 use crate::fracture::kernel::clip::{clip, clip_keeping_faces};
 use crate::fracture::kernel::{Piece, Plane, SURFACE, mesh_scale};
-use crate::util::bounds;
+use crate::util::{bounds, box_corners};
 
 /// Clips `mesh` by the Voronoi cells of `seeds` under the diagonal metric `metric`
 /// (`|x|² = Σ metricᵢ xᵢ²`; all ones for the Euclidean distance). Returns the fragments
@@ -249,15 +249,7 @@ fn box_piece(mesh: &Piece) -> Piece {
     let (lo, hi) = bounds(&mesh.pos);
     let pad = (hi - lo) * 0.1 + DVec3::splat(1e-9);
     let (lo, hi) = (lo - pad, hi + pad);
-    let pos: Vec<DVec3> = (0..8)
-        .map(|i| {
-            DVec3::new(
-                if i & 1 == 0 { lo.x } else { hi.x },
-                if i & 2 == 0 { lo.y } else { hi.y },
-                if i & 4 == 0 { lo.z } else { hi.z },
-            )
-        })
-        .collect();
+    let pos = box_corners(lo, hi);
     let quads = [
         [0, 2, 3, 1],
         [4, 5, 7, 6],
