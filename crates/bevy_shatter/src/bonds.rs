@@ -2,65 +2,17 @@
 //! splitting bodies into islands.
 
 use std::collections::BTreeMap;
-use std::sync::Arc;
 
 use avian3d::prelude::*;
 use bevy::prelude::*;
-use shatter_geom::fracture::Fracture;
 use shatter_sim::breaking::{
-    BondState, Graph, Loads, components, contact_share, inherited_velocity, launch_velocity,
-    part_centre, weight_relief,
+    Graph, Loads, components, contact_share, inherited_velocity, launch_velocity, part_centre,
+    weight_relief,
 };
 
+use crate::components::{Fragment, ShatterBody, ShatterObject};
 use crate::convert::{from_bevy, to_bevy};
-use crate::spawn::Fragment;
 use crate::{BondBroken, ShatterSettings, Split};
-
-/// The record of a fractured object, on the former [`Breakable`](crate::Breakable)
-/// entity: its fracture, bond state and which body holds each fragment.
-#[derive(Component, Debug, Clone)]
-pub struct ShatterObject {
-    /// The fracture (object frame).
-    pub fracture: Arc<Fracture>,
-    /// Per fragment, its mass (kg).
-    pub masses: Vec<f32>,
-    /// Per fragment, its bonds.
-    pub adjacency: Vec<Vec<u32>>,
-    /// Per bond, broken or not and its health.
-    pub state: BondState,
-    /// Per fragment, its body entity (`None`: no collider, or removed).
-    pub body_of: Vec<Option<Entity>>,
-    /// Per fragment, its entity (`Entity::PLACEHOLDER` without a collider).
-    pub fragments: Vec<Entity>,
-    /// Per fragment, whether it is fixed to the world.
-    pub anchored: Vec<bool>,
-}
-
-impl ShatterObject {
-    /// The bond graph for [`shatter_sim::breaking`].
-    pub fn graph(&self) -> Graph<'_> {
-        Graph {
-            bonds: &self.fracture.bonds,
-            adjacency: &self.adjacency,
-            masses: &self.masses,
-        }
-    }
-
-    /// Number of distinct bodies holding fragments.
-    pub fn bodies(&self) -> usize {
-        let mut b: Vec<Entity> = self.body_of.iter().flatten().copied().collect();
-        b.sort();
-        b.dedup();
-        b.len()
-    }
-}
-
-/// A rigid body made by the plugin, holding fragments of `object`.
-#[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
-pub struct ShatterBody {
-    /// The object.
-    pub object: Entity,
-}
 
 type BodyQuery<'w, 's> = Query<
     'w,

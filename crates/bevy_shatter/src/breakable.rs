@@ -4,12 +4,12 @@
 use std::sync::Arc;
 
 use bevy::prelude::*;
-use bevy::tasks::{AsyncComputeTaskPool, Task, block_on, poll_once};
+use bevy::tasks::{AsyncComputeTaskPool, Task};
 use shatter_geom::fracture::{self as geom, Fracture};
 use shatter_sim::{BondModel, Material, MaterialPreset, MethodKind, Pattern};
 
 use crate::asset::FractureAsset;
-use crate::{FractureFailed, Fractured, ShatterSettings, convert, spawn};
+use crate::{FractureFailed, convert};
 
 /// Marks an entity with a `Mesh3d` and a `Transform` as breakable. At spawn its mesh is
 /// fractured on a background task; then the mesh is removed from the entity and its
@@ -184,7 +184,7 @@ pub(crate) struct Outcome {
 
 /// A fracture running on the async compute pool.
 #[derive(Component)]
-pub(crate) struct FractureTask(Task<Result<Outcome, BreakableError>>);
+pub(crate) struct FractureTask(pub(crate) Task<Result<Outcome, BreakableError>>);
 
 /// Starts a background fracture for each new [`Breakable`].
 pub(crate) fn start_fractures(
@@ -229,69 +229,5 @@ pub(crate) fn start_fractures(
             })
         });
         commands.entity(entity).insert(FractureTask(task));
-    }
-}
-
-/// What [`finish_fractures`] reads of a fracturing entity.
-type TaskItem<'a> = (
-    Entity,
-    &'a Breakable,
-    &'a mut FractureTask,
-    &'a GlobalTransform,
-    Option<&'a MeshMaterial3d<StandardMaterial>>,
-);
-
-/// Spawns the fragments of finished fractures.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn finish_fractures(
-    mut commands: Commands,
-    mut tasks: Query<TaskItem>,
-    mut meshes: ResMut<Assets<Mesh>>,
-    mut materials: ResMut<Assets<StandardMaterial>>,
-    mut settings: ResMut<ShatterSettings>,
-    mut fractured: MessageWriter<Fractured>,
-    mut failed: MessageWriter<FractureFailed>,
-) {
-    for (entity, breakable, mut task, transform, material) in &mut tasks {
-        let Some(result) = block_on(poll_once(&mut task.0)) else {
-            continue;
-        };
-        commands
-            .entity(entity)
-            .remove::<(FractureTask, Breakable)>();
-        let outcome = match result {
-            Ok(outcome) => outcome,
-            Err(error) => {
-                warn!("bevy_shatter: {entity}: {error}");
-                failed.write(FractureFailed {
-                    object: entity,
-                    error,
-                });
-                continue;
-            }
-        };
-        let interior = settings
-            .interior_material
-            .get_or_insert_with(|| materials.add(Color::srgb(0.55, 0.55, 0.55)))
-            .clone();
-        let surface = material
-            .map(|m| m.0.clone())
-            .unwrap_or_else(|| interior.clone());
-        let message = Fractured {
-            object: entity,
-            fragments: outcome.fracture.fragments.len(),
-            bonds: outcome.fracture.bonds.len(),
-        };
-        spawn::spawn_fragments(
-            &mut commands,
-            &mut meshes,
-            entity,
-            breakable,
-            outcome,
-            transform.compute_transform(),
-            surface,
-            interior,
-        );
-        fractured.write(message);
     }
 }

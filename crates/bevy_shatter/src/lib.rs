@@ -43,15 +43,15 @@
 pub mod asset;
 mod bonds;
 pub mod breakable;
+mod components;
 mod convert;
 mod spawn;
 
 use bevy::prelude::*;
 
 pub use asset::{FractureAsset, FractureAssetError, FractureAssetLoader};
-pub use bonds::{ShatterBody, ShatterObject};
 pub use breakable::{Breakable, BreakableError};
-pub use spawn::Fragment;
+pub use components::{Fragment, ShatterBody, ShatterObject};
 
 /// The plugin: fractures [`Breakable`] entities and breaks their bonds.
 ///
@@ -160,7 +160,7 @@ impl Plugin for ShatterPlugin {
         .add_systems(
             FixedUpdate,
             (
-                (breakable::start_fractures, breakable::finish_fractures)
+                (breakable::start_fractures, spawn::finish_fractures)
                     .chain()
                     .in_set(ShatterSystems::Fracture),
                 (bonds::break_bonds, bonds::guard)

@@ -6,20 +6,10 @@ use bevy::prelude::*;
 use shatter_geom::fracture::Fracture;
 use shatter_sim::breaking::{BondState, Graph};
 
-use crate::bonds::{ShatterBody, ShatterObject};
-use crate::breakable::Outcome;
-use crate::{Breakable, convert};
-
-/// A fragment of a fractured object: a child of its body entity, with the surface mesh,
-/// the entity's own material and a collider; its interior (cut) faces are a child entity
-/// with the interior material.
-#[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Fragment {
-    /// The object (the former [`Breakable`] entity).
-    pub object: Entity,
-    /// The fragment's index in the fracture.
-    pub index: u32,
-}
+use crate::breakable::{FractureTask, Outcome};
+use crate::components::{Fragment, ShatterBody, ShatterObject};
+use crate::{Breakable, FractureFailed, Fractured, ShatterSettings, convert};
+use bevy::tasks::{block_on, poll_once};
 
 /// The collider of a fragment: the convex hulls of its pieces (object frame).
 fn fragment_collider(pieces: &[Vec<glam::DVec3>]) -> Option<Collider> {
@@ -169,4 +159,68 @@ fn anchored_fragments(fracture: &Fracture, anchored: bool) -> Vec<bool> {
         .iter()
         .map(|f| anchored && low(f) <= bottom + tolerance)
         .collect()
+}
+
+/// What [`finish_fractures`] reads of a fracturing entity.
+type TaskItem<'a> = (
+    Entity,
+    &'a Breakable,
+    &'a mut FractureTask,
+    &'a GlobalTransform,
+    Option<&'a MeshMaterial3d<StandardMaterial>>,
+);
+
+/// Spawns the fragments of finished fractures.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn finish_fractures(
+    mut commands: Commands,
+    mut tasks: Query<TaskItem>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+    mut settings: ResMut<ShatterSettings>,
+    mut fractured: MessageWriter<Fractured>,
+    mut failed: MessageWriter<FractureFailed>,
+) {
+    for (entity, breakable, mut task, transform, material) in &mut tasks {
+        let Some(result) = block_on(poll_once(&mut task.0)) else {
+            continue;
+        };
+        commands
+            .entity(entity)
+            .remove::<(FractureTask, Breakable)>();
+        let outcome = match result {
+            Ok(outcome) => outcome,
+            Err(error) => {
+                warn!("bevy_shatter: {entity}: {error}");
+                failed.write(FractureFailed {
+                    object: entity,
+                    error,
+                });
+                continue;
+            }
+        };
+        let interior = settings
+            .interior_material
+            .get_or_insert_with(|| materials.add(Color::srgb(0.55, 0.55, 0.55)))
+            .clone();
+        let surface = material
+            .map(|m| m.0.clone())
+            .unwrap_or_else(|| interior.clone());
+        let message = Fractured {
+            object: entity,
+            fragments: outcome.fracture.fragments.len(),
+            bonds: outcome.fracture.bonds.len(),
+        };
+        spawn_fragments(
+            &mut commands,
+            &mut meshes,
+            entity,
+            breakable,
+            outcome,
+            transform.compute_transform(),
+            surface,
+            interior,
+        );
+        fractured.write(message);
+    }
 }

@@ -22,7 +22,7 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use clap::{Parser, Subcommand};
 
 use crate::commands::{
-    bench_creation, bench_delaunay, bench_fracture, bench_runtime, bench_scale, bench_step,
+    batch, bench_creation, bench_delaunay, bench_fracture, bench_runtime, bench_scale, bench_step,
     bench_stress, fracture, inspect, shape, simulate, study, tetrahedralize,
 };
 use crate::context::Context;
@@ -85,6 +85,7 @@ fn run(command: &Command, ctx: &Context) -> Result<(), CliError> {
     match command {
         Command::Tetrahedralize(a) => tetrahedralize::run(a, ctx),
         Command::Shape(a) => shape::run(a, ctx),
+        Command::Fracture(a) if a.is_batch() => batch::run(a, ctx),
         Command::Fracture(a) => fracture::run(a, ctx),
         Command::Inspect(a) => inspect::run(a),
         Command::Simulate(a) => simulate::run(a, ctx).map(|_| ()),

@@ -30,15 +30,14 @@ pub enum SimError {
         reason: String,
     },
     /// A material preset name that does not exist.
-    #[error(
-        "{key}: unknown material `{name}` (expected one of: {})",
-        crate::material::MATERIAL_NAMES.join(", ")
-    )]
+    #[error("{key}: unknown material `{name}` (expected one of: {})", valid.join(", "))]
     UnknownMaterial {
         /// The key holding the name.
         key: String,
         /// The unknown name.
         name: String,
+        /// The preset names there are.
+        valid: &'static [&'static str],
     },
     /// A shape name that does not exist.
     #[error(

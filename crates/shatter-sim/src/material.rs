@@ -186,6 +186,7 @@ impl Material {
         Material::preset(name).ok_or_else(|| SimError::UnknownMaterial {
             key: key.to_string(),
             name: name.to_string(),
+            valid: MATERIAL_NAMES,
         })
     }
 

@@ -172,6 +172,7 @@ fn one(
 
 /// Runs a batch `shatter fracture`.
 pub fn run(args: &FractureArgs, ctx: &Context) -> Result<(), CliError> {
+    args.asset.check(args.out.as_deref(), true)?;
     if args.shape.is_some() {
         return Err(CliError::input(
             "--shape fractures one shape; a batch takes MESH files",

@@ -242,12 +242,10 @@ impl FractureArgs {
     }
 }
 
-/// Runs `shatter fracture`.
+/// Runs `shatter fracture` on one mesh or shape (`main` sends a batch to
+/// [`super::batch::run`]).
 pub fn run(args: &FractureArgs, ctx: &Context) -> Result<(), CliError> {
-    args.asset.check(args.out.as_deref(), args.is_batch())?;
-    if args.is_batch() {
-        return super::batch::run(args, ctx);
-    }
+    args.asset.check(args.out.as_deref(), false)?;
     let (config, out) = args.validate(ctx)?;
     let (model, mut warnings) = load_source(&config)?;
     let mesh = &model.mesh;

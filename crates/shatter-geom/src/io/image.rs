@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use super::WarningKind;
-use super::load::ReadContext;
+use super::context::ReadContext;
 use crate::model::{Image, ImageFormat};
 
 /// The encoding of an image from its first bytes (PNG and JPEG signatures).

@@ -34,6 +34,7 @@
 //! assert!(back.check().is_solid());
 //! ```
 
+mod context;
 mod error;
 mod export;
 mod files;

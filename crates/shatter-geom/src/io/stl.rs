@@ -7,7 +7,7 @@ use std::path::Path;
 
 use glam::DVec3;
 
-use super::load::{MAX_TRIANGLES, ReadContext};
+use super::context::{MAX_TRIANGLES, ReadContext};
 use super::{MeshIoError, WarningKind};
 use crate::TriMesh;
 use crate::model::Model;

@@ -11,8 +11,8 @@ use crate::object::{
     ExplosionSpec, FractureParams, FractureSource, ObjectSpec, ProjectileShape, ProjectileSpec,
 };
 use crate::runtime::RuntimeFracture;
+use crate::scene::checks::{Ctx, color, count, opt_word, positive, time, word};
 use crate::scene::file::{ExplosionEntry, ObjectEntry, ProjectileEntry};
-use crate::scene::load::{Ctx, color, count, opt_word, positive, time, word};
 
 pub(super) fn object(ctx: &Ctx, key: &str, o: &ObjectEntry) -> Result<ObjectSpec, SimError> {
     let mut material = match &o.material {

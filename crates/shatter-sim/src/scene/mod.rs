@@ -2,6 +2,7 @@
 //! explosions. The schema is documented in `docs/scene-format.md`.
 
 pub mod budget;
+mod checks;
 mod entries;
 pub mod file;
 pub mod load;
@@ -9,5 +10,6 @@ mod save;
 pub mod values;
 
 pub use budget::{ObjectEstimate, SceneEstimate};
+pub use checks::line_col;
 pub use file::SceneFile;
-pub use load::{Scene, line_col};
+pub use load::Scene;

@@ -1,5 +1,6 @@
 //! The simulation world: controls, stepping, queries.
 
+mod cut;
 mod query;
 mod run;
 mod runtime_step;
@@ -10,5 +11,5 @@ mod stress_step;
 mod upkeep;
 
 pub use query::ProjectileView;
-pub use settings::{BreakCause, SimEvent, Stats, WorldSettings};
-pub use state::{ObjectId, RunState, World};
+pub use settings::{BreakCause, ObjectId, RunState, SimEvent, Stats, WorldSettings};
+pub use state::World;

@@ -14,7 +14,7 @@ use std::sync::Arc;
 
 use glam::{DVec3, Vec3};
 use rapier3d::prelude::*;
-use shatter_geom::fracture::{Fracture, FractureError};
+use shatter_geom::fracture::Fracture;
 
 use crate::bonds::clusters::{self, Loads};
 use crate::bonds::split::world_com;
@@ -24,95 +24,20 @@ use crate::error::SimError;
 use crate::object::prepare::prepare;
 use crate::object::{BondModel, FractureSource};
 use crate::runtime::{self, FractureTiming};
+use crate::world::cut::{CutInput, CutJob, PendingCut, cut_seed};
 use crate::world::settings::SimEvent;
 use crate::world::state::{ObjectId, ObjectRecord, World};
 use crate::world::step::ContactHit;
 
-/// A cut under way.
-pub(crate) struct PendingCut {
-    /// The object and fragment being cut.
-    pub object: ObjectId,
-    pub fragment: u32,
-    /// The hit point in the object's frame.
-    pub impact: DVec3,
-    /// The hit that started it (force in N, impulse on the fragment in N·s, the other
-    /// body's mass), to load the new bonds with.
-    pub force: f32,
-    pub impulse: Vec3,
-    pub other_mass: f32,
-    /// The step at whose end the cut is applied.
-    pub due: u64,
-    pub job: CutJob,
-}
-
-/// What a cut computes: [`runtime::cut_at`] of these.
-pub(crate) struct CutInput {
-    model: shatter_geom::model::Model,
-    impact: DVec3,
-    pieces: u32,
-    seed: u64,
-}
-
-impl CutInput {
-    /// The cut of `record`'s fragment `fragment` at `impact`: its model, the pieces of
-    /// its level ([`runtime::pieces_at`]) and the seed of its line.
-    fn of(record: &ObjectRecord, fragment: u32, impact: DVec3) -> CutInput {
-        CutInput {
-            model: runtime::fragment_model(&record.prepared.fracture, fragment as usize),
-            impact,
-            pieces: runtime::pieces_at(record.cut_pieces, record.level),
-            seed: cut_seed(record.cut_seed, fragment, record.level),
-        }
-    }
-
-    fn run(self) -> Result<Fracture, FractureError> {
-        runtime::cut_at(&self.model, self.impact, self.pieces, self.seed)
-    }
-}
-
-/// The cut's computation.
-pub(crate) enum CutJob {
-    #[cfg(not(target_arch = "wasm32"))]
-    Thread(std::thread::JoinHandle<Result<Fracture, FractureError>>),
-    /// Not started yet (no threads): run when due. (Plain data, not a closure: the world
-    /// is shared between threads, as a Bevy resource is.)
-    #[cfg(target_arch = "wasm32")]
-    Later(Box<CutInput>),
-}
-
-impl CutJob {
-    fn start(input: CutInput) -> CutJob {
-        #[cfg(not(target_arch = "wasm32"))]
-        {
-            CutJob::Thread(std::thread::spawn(move || input.run()))
-        }
-        #[cfg(target_arch = "wasm32")]
-        {
-            CutJob::Later(Box::new(input))
-        }
-    }
-
-    fn finish(self) -> Result<Fracture, String> {
-        match self {
-            #[cfg(not(target_arch = "wasm32"))]
-            CutJob::Thread(handle) => match handle.join() {
-                Ok(result) => result.map_err(|e| e.to_string()),
-                Err(_) => Err("the cut's thread panicked".to_string()),
-            },
-            #[cfg(target_arch = "wasm32")]
-            CutJob::Later(input) => input.run().map_err(|e| e.to_string()),
-        }
-    }
-}
-
-impl std::fmt::Debug for PendingCut {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("PendingCut")
-            .field("object", &self.object)
-            .field("fragment", &self.fragment)
-            .field("due", &self.due)
-            .finish_non_exhaustive()
-    }
+/// The cut of `record`'s fragment `fragment` at `impact`: its model, the pieces of its
+/// level ([`runtime::pieces_at`]) and the seed of its line.
+fn cut_input(record: &ObjectRecord, fragment: u32, impact: DVec3) -> CutInput {
+    CutInput::new(
+        runtime::fragment_model(&record.prepared.fracture, fragment as usize),
+        impact,
+        runtime::pieces_at(record.cut_pieces, record.level),
+        cut_seed(record.cut_seed, fragment, record.level),
+    )
 }
 
 /// What a cut needs from the record of the fragment it cuts.
@@ -202,10 +127,8 @@ impl World {
         let Some(record) = self.objects.get(&request.object) else {
             return;
         };
-        let input = CutInput::of(record, request.fragment, request.impact);
-        let triangles = input.model.mesh.triangles.len() as u64;
-        let estimate =
-            shatter_geom::budget::Estimate::voronoi_fracture(u64::from(input.pieces), triangles);
+        let input = cut_input(record, request.fragment, request.impact);
+        let estimate = input.estimate();
         let lag = 1 + (estimate.seconds / f64::from(self.settings.dt)).floor() as u64;
         let job = CutJob::start(input);
         let (force, impulse, other_mass) = request.hit;
@@ -313,7 +236,7 @@ impl World {
             .get(body)
             .ok_or_else(|| SimError::invalid(&key, "the fragment's body is gone"))?;
         let impact = rb.position().inverse_transform_point(point).as_dvec3();
-        let fracture = CutInput::of(record, fragment, impact)
+        let fracture = cut_input(record, fragment, impact)
             .run()
             .map_err(|source| SimError::Fracture {
                 key: key.clone(),
@@ -475,15 +398,4 @@ impl World {
     pub fn pending_cuts(&self) -> usize {
         self.cuts.len()
     }
-}
-
-/// The seed of a cut: the seed of the object's line mixed with which fragment and level it
-/// cuts (not with object ids, which a reset does not repeat), so every cut differs and a
-/// run repeats.
-fn cut_seed(seed: u64, fragment: u32, level: u32) -> u64 {
-    let mut h = seed ^ 0x9e37_79b9_7f4a_7c15;
-    for v in [u64::from(fragment), u64::from(level)] {
-        h = (h ^ v).wrapping_mul(0x0100_0000_01b3).rotate_left(17);
-    }
-    h
 }

@@ -150,3 +150,18 @@ pub enum SimEvent {
 }
 
 pub use crate::breaking::BreakCause;
+
+/// Identifies a breakable object in a [`World`](crate::World).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct ObjectId(pub u32);
+
+/// Whether the simulation advances.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RunState {
+    /// Built, not started (after construction, reset or clean).
+    Stopped,
+    /// Advancing on every [`World::step`](crate::World::step).
+    Running,
+    /// Started, held.
+    Paused,
+}

@@ -14,24 +14,10 @@ use crate::error::SimError;
 use crate::object::prepare::{prepare, resolve_fracture};
 use crate::object::{BondModel, ExplosionSpec, ObjectSpec, Prepared, ProjectileSpec};
 use crate::runtime::FractureTiming;
-use crate::world::runtime_step::PendingCut;
+use crate::world::cut::PendingCut;
+pub(crate) use crate::world::settings::{ObjectId, RunState};
 use crate::world::settings::{SimEvent, Stats, WorldSettings};
 use shatter_geom::io::{FileSystem, Layered, MemoryFiles};
-
-/// Identifies a breakable object in a [`World`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct ObjectId(pub u32);
-
-/// Whether the simulation advances.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum RunState {
-    /// Built, not started (after construction, reset or clean).
-    Stopped,
-    /// Advancing on every [`World::step`].
-    Running,
-    /// Started, held.
-    Paused,
-}
 
 /// A breakable object: what was asked for, its geometry, and its live physics state.
 #[derive(Debug)]

@@ -7,7 +7,7 @@ use base64::Engine;
 use serde_json::Value;
 
 use super::json::Root;
-use crate::io::load::ReadContext;
+use crate::io::context::ReadContext;
 
 const JSON_CHUNK: u32 = 0x4E4F_534A;
 const BIN_CHUNK: u32 = 0x004E_4942;

@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 
 use super::lines::{decode, lines};
 use crate::io::WarningKind;
+use crate::io::context::ReadContext;
 use crate::io::image::ImageCache;
-use crate::io::load::ReadContext;
 use crate::model::{Material, Texture};
 
 /// Options of `map_*` statements and how many values each takes (`-o`, `-s` and `-t`

@@ -12,12 +12,12 @@ use super::{BreakThresholds, FRACTURE_EXTENSION, FRACTURE_EXTENSION_VERSION, Fra
 use crate::TriMesh;
 use crate::fracture::{Bond, Fracture, Fragment};
 use crate::io::MeshIoError;
+use crate::io::context::ReadContext;
 use crate::io::files::{FileSource, FileSystem, NoFiles};
 use crate::io::gltf::accessor::{self, Expect};
 use crate::io::gltf::container;
 use crate::io::gltf::json::{self, Root};
 use crate::io::gltf::read::{Decoded, Materials, decode_primitive};
-use crate::io::load::ReadContext;
 use crate::model::{Corners, Material};
 
 const FLOAT: u32 = 5126;

@@ -4,11 +4,11 @@
 use std::sync::Arc;
 
 use crate::io::WarningKind;
+use crate::io::context::ReadContext;
 use crate::io::gltf::accessor;
 use crate::io::gltf::container::{self, Uri};
 use crate::io::gltf::json::{self, Root};
 use crate::io::image::{self, ImageCache};
-use crate::io::load::ReadContext;
 use crate::model::{Image, Material, Texture};
 
 /// The glTF default material (spec: white, metallic 1, roughness 1).

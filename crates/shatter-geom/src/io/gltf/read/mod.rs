@@ -14,7 +14,7 @@ use glam::{DMat3, DMat4, DQuat, DVec3};
 use super::container;
 use super::json::{self, Root};
 use crate::TriMesh;
-use crate::io::load::{MAX_TRIANGLES, ReadContext};
+use crate::io::context::{MAX_TRIANGLES, ReadContext};
 use crate::io::{MeshIoError, WarningKind};
 use crate::model::{Corners, Material, Model};
 pub(crate) use materials::Materials;

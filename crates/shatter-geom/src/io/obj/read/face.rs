@@ -6,7 +6,7 @@ use glam::DVec3;
 
 use super::{Corner, NONE, Reader, UNNAMED};
 use crate::io::MeshIoError;
-use crate::io::load::MAX_TRIANGLES;
+use crate::io::context::MAX_TRIANGLES;
 
 impl<'a, 'c> Reader<'a, 'c> {
     /// A 0-based index from a file's 1-based (or negative, relative) index `word`, with

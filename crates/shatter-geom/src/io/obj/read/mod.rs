@@ -19,8 +19,8 @@ use glam::DVec3;
 use super::lines::{Line, decode, lines};
 use super::mtl;
 use crate::io::MeshIoError;
+use crate::io::context::ReadContext;
 use crate::io::image::ImageCache;
-use crate::io::load::ReadContext;
 use crate::io::polygon::Triangulator;
 use crate::model::{Material, Model};
 

@@ -1,0 +1,64 @@
+//! The components the plugin puts on a fractured object, its bodies and its fragments.
+
+use std::sync::Arc;
+
+use bevy::prelude::*;
+use shatter_geom::fracture::Fracture;
+use shatter_sim::breaking::{BondState, Graph};
+
+/// A fragment of a fractured object: a child of its body entity, with the surface mesh,
+/// the entity's own material and a collider; its interior (cut) faces are a child entity
+/// with the interior material.
+#[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Fragment {
+    /// The object (the former [`Breakable`](crate::Breakable) entity).
+    pub object: Entity,
+    /// The fragment's index in the fracture.
+    pub index: u32,
+}
+
+/// The record of a fractured object, on the former [`Breakable`](crate::Breakable)
+/// entity: its fracture, bond state and which body holds each fragment.
+#[derive(Component, Debug, Clone)]
+pub struct ShatterObject {
+    /// The fracture (object frame).
+    pub fracture: Arc<Fracture>,
+    /// Per fragment, its mass (kg).
+    pub masses: Vec<f32>,
+    /// Per fragment, its bonds.
+    pub adjacency: Vec<Vec<u32>>,
+    /// Per bond, broken or not and its health.
+    pub state: BondState,
+    /// Per fragment, its body entity (`None`: no collider, or removed).
+    pub body_of: Vec<Option<Entity>>,
+    /// Per fragment, its entity (`Entity::PLACEHOLDER` without a collider).
+    pub fragments: Vec<Entity>,
+    /// Per fragment, whether it is fixed to the world.
+    pub anchored: Vec<bool>,
+}
+
+impl ShatterObject {
+    /// The bond graph for [`shatter_sim::breaking`].
+    pub fn graph(&self) -> Graph<'_> {
+        Graph {
+            bonds: &self.fracture.bonds,
+            adjacency: &self.adjacency,
+            masses: &self.masses,
+        }
+    }
+
+    /// Number of distinct bodies holding fragments.
+    pub fn bodies(&self) -> usize {
+        let mut b: Vec<Entity> = self.body_of.iter().flatten().copied().collect();
+        b.sort();
+        b.dedup();
+        b.len()
+    }
+}
+
+/// A rigid body made by the plugin, holding fragments of `object`.
+#[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ShatterBody {
+    /// The object.
+    pub object: Entity,
+}

@@ -1,0 +1,112 @@
+//! A runtime cut under way: what it computes, on a thread (native) or at its step (web),
+//! and the seed of each cut.
+
+use glam::{DVec3, Vec3};
+use shatter_geom::fracture::{Fracture, FractureError};
+use shatter_geom::model::Model;
+
+use crate::runtime;
+use crate::world::settings::ObjectId;
+
+/// A cut under way.
+pub(crate) struct PendingCut {
+    /// The object and fragment being cut.
+    pub object: ObjectId,
+    pub fragment: u32,
+    /// The hit point in the object's frame.
+    pub impact: DVec3,
+    /// The hit that started it (force in N, impulse on the fragment in N·s, the other
+    /// body's mass), to load the new bonds with.
+    pub force: f32,
+    pub impulse: Vec3,
+    pub other_mass: f32,
+    /// The step at whose end the cut is applied.
+    pub due: u64,
+    pub job: CutJob,
+}
+
+/// What a cut computes: [`runtime::cut_at`] of these.
+pub(crate) struct CutInput {
+    model: Model,
+    impact: DVec3,
+    pieces: u32,
+    seed: u64,
+}
+
+impl CutInput {
+    /// The cut of `model` at `impact` into `pieces` cells, from `seed`.
+    pub(crate) fn new(model: Model, impact: DVec3, pieces: u32, seed: u64) -> CutInput {
+        CutInput {
+            model,
+            impact,
+            pieces,
+            seed,
+        }
+    }
+
+    /// The estimate of the cut (a Voronoi fracture of its pieces).
+    pub(crate) fn estimate(&self) -> shatter_geom::budget::Estimate {
+        let triangles = self.model.mesh.triangles.len() as u64;
+        shatter_geom::budget::Estimate::voronoi_fracture(u64::from(self.pieces), triangles)
+    }
+
+    pub(crate) fn run(self) -> Result<Fracture, FractureError> {
+        runtime::cut_at(&self.model, self.impact, self.pieces, self.seed)
+    }
+}
+
+/// The cut's computation.
+pub(crate) enum CutJob {
+    #[cfg(not(target_arch = "wasm32"))]
+    Thread(std::thread::JoinHandle<Result<Fracture, FractureError>>),
+    /// Not started yet (no threads): run when due. (Plain data, not a closure: the world
+    /// is shared between threads, as a Bevy resource is.)
+    #[cfg(target_arch = "wasm32")]
+    Later(Box<CutInput>),
+}
+
+impl CutJob {
+    pub(crate) fn start(input: CutInput) -> CutJob {
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            CutJob::Thread(std::thread::spawn(move || input.run()))
+        }
+        #[cfg(target_arch = "wasm32")]
+        {
+            CutJob::Later(Box::new(input))
+        }
+    }
+
+    pub(crate) fn finish(self) -> Result<Fracture, String> {
+        match self {
+            #[cfg(not(target_arch = "wasm32"))]
+            CutJob::Thread(handle) => match handle.join() {
+                Ok(result) => result.map_err(|e| e.to_string()),
+                Err(_) => Err("the cut's thread panicked".to_string()),
+            },
+            #[cfg(target_arch = "wasm32")]
+            CutJob::Later(input) => input.run().map_err(|e| e.to_string()),
+        }
+    }
+}
+
+impl std::fmt::Debug for PendingCut {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PendingCut")
+            .field("object", &self.object)
+            .field("fragment", &self.fragment)
+            .field("due", &self.due)
+            .finish_non_exhaustive()
+    }
+}
+
+/// The seed of a cut: the seed of the object's line mixed with which fragment and level it
+/// cuts (not with object ids, which a reset does not repeat), so every cut differs and a
+/// run repeats.
+pub(crate) fn cut_seed(seed: u64, fragment: u32, level: u32) -> u64 {
+    let mut h = seed ^ 0x9e37_79b9_7f4a_7c15;
+    for v in [u64::from(fragment), u64::from(level)] {
+        h = (h ^ v).wrapping_mul(0x0100_0000_01b3).rotate_left(17);
+    }
+    h
+}
