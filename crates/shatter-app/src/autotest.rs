@@ -208,7 +208,7 @@ fn run_script(
                 Ok(cmd) => pending.0.push(cmd),
                 Err(e) => {
                     test.record
-                        .insert("bridge_error".into(), json!(format!("{e:?}")));
+                        .insert("bridge_error".into(), json!(e.to_string()));
                 }
             }
             true
@@ -251,7 +251,7 @@ fn run_script(
                 Ok(cmd) => pending.0.push(cmd),
                 Err(e) => {
                     test.record
-                        .insert("runtime_error".into(), json!(format!("{e:?}")));
+                        .insert("runtime_error".into(), json!(e.to_string()));
                 }
             }
             true
@@ -282,7 +282,7 @@ fn run_script(
                 Ok(cmd) => pending.0.push(cmd),
                 Err(e) => {
                     test.record
-                        .insert("textured_error".into(), json!(format!("{e:?}")));
+                        .insert("textured_error".into(), json!(e.to_string()));
                 }
             }
             true

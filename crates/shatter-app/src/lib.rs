@@ -4,7 +4,9 @@
 //! [`ui::UiPlugin`], [`input::ClickPlugin`], [`sim_plugin::SimPlugin`] and
 //! [`autotest::AutotestPlugin`] — gathered by [`ShatterAppPlugin`]. The simulation is
 //! reached only through [`sim_bridge::SimBridge`]; the panels only produce typed
-//! [`commands::SimCommand`]s, validated by pure functions in [`ui::forms`].
+//! [`commands::SimCommand`]s, validated by pure functions in [`ui::forms`]. Errors are
+//! typed ([`ui::fields::FieldError`], [`ui::forms::FormError`], [`error::AppError`]) and
+//! become text only where they are shown: the panels, the log and the autotest's record.
 //!
 //! ```no_run
 //! use bevy::prelude::*;
@@ -21,6 +23,7 @@
 pub mod autotest;
 pub mod camera;
 pub mod commands;
+pub mod error;
 pub mod input;
 pub mod picked_files;
 pub mod render;

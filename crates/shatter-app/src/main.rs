@@ -41,17 +41,38 @@ pub fn add_mesh(name: String, bytes: Vec<u8>) -> String {
     String::new()
 }
 
-fn parse_args(args: &[String]) -> Result<Option<PathBuf>, String> {
+/// Why the command line is refused; its `Display` is what is printed.
+#[derive(Debug, thiserror::Error)]
+enum ArgsError {
+    /// `--autotest` without a folder.
+    #[error("--autotest needs a folder")]
+    NoFolder,
+    /// `-h` / `--help`: the usage.
+    #[error("{}", USAGE)]
+    Help,
+    /// Anything else.
+    #[error("unknown argument '{arg}'\n{USAGE}", USAGE = USAGE)]
+    Unknown {
+        /// The argument.
+        arg: String,
+    },
+}
+
+fn parse_args(args: &[String]) -> Result<Option<PathBuf>, ArgsError> {
     let mut autotest = None;
     let mut it = args.iter();
     while let Some(a) = it.next() {
         match a.as_str() {
             "--autotest" => {
-                let dir = it.next().ok_or("--autotest needs a folder")?;
+                let dir = it.next().ok_or(ArgsError::NoFolder)?;
                 autotest = Some(PathBuf::from(dir));
             }
-            "-h" | "--help" => return Err(USAGE.to_owned()),
-            other => return Err(format!("unknown argument '{other}'\n{USAGE}")),
+            "-h" | "--help" => return Err(ArgsError::Help),
+            other => {
+                return Err(ArgsError::Unknown {
+                    arg: other.to_owned(),
+                });
+            }
         }
     }
     Ok(autotest)

@@ -12,6 +12,7 @@ use shatter_sim::{
 };
 
 use crate::commands::{ObjectSpec, ShapeChoice};
+use crate::error::AppError;
 
 /// The simulation's spec for what the panels ask for. `base` is the object being edited
 /// (its hidden properties are kept); `bond_model` the model chosen in the panel.
@@ -19,7 +20,7 @@ pub fn to_sim_spec(
     spec: &ObjectSpec,
     base: Option<&SimSpec>,
     bond_model: Option<BondModel>,
-) -> Result<SimSpec, String> {
+) -> Result<SimSpec, AppError> {
     let base_params = base.and_then(|b| match &b.source {
         FractureSource::Shape { params, .. } | FractureSource::MeshFile { params, .. } => {
             Some(params.clone())
@@ -134,20 +135,18 @@ pub fn from_sim_spec(spec: &SimSpec) -> ObjectSpec {
 /// The vertices of a projectile shape that has no primitive collider (a custom mesh, the
 /// bird, a torus), centred on their bounds and scaled so the largest extent is 1: the
 /// projectile's Size is then its largest extent.
-pub fn projectile_points(shape: &ShapeChoice) -> Result<Vec<DVec3>, String> {
+pub fn projectile_points(shape: &ShapeChoice) -> Result<Vec<DVec3>, AppError> {
     let mesh = match shape {
         ShapeChoice::Custom(path) => {
             shatter_geom::io::load_mesh_from(path, &crate::picked_files::sources())
-                .map_err(|e| format!("projectile: {e}"))?
+                .map_err(AppError::ProjectileMesh)?
         }
         ShapeChoice::Builtin(shape) => shape.mesh(),
     };
-    let (lo, hi) = mesh
-        .bounds()
-        .ok_or_else(|| "projectile: the mesh has no vertices".to_owned())?;
+    let (lo, hi) = mesh.bounds().ok_or(AppError::ProjectileNoVertices)?;
     let extent = (hi - lo).max_element();
     if !(extent.is_finite() && extent > 0.0) {
-        return Err("projectile: the mesh is flat or not finite".to_owned());
+        return Err(AppError::FlatProjectile);
     }
     let centre = (lo + hi) * 0.5;
     Ok(mesh

@@ -225,7 +225,7 @@ fn a_refused_object_changes_nothing_and_says_why() {
             ..cube_spec(DVec3::ZERO)
         }))
         .unwrap_err();
-    assert!(err.contains("no/such/mesh.obj"), "{err}");
+    assert!(err.to_string().contains("no/such/mesh.obj"), "{err}");
     assert_eq!(b.stats(), before);
     // A grid of the bird is its cells clipped to it, not a refusal.
     let added = b.apply(SimCommand::AddObject(ObjectSpec {
@@ -243,6 +243,7 @@ fn a_refused_object_changes_nothing_and_says_why() {
             power: 10.0
         })
         .unwrap_err()
+        .to_string()
         .contains("radius")
     );
 }
@@ -298,7 +299,7 @@ fn save_and_load_round_trip_and_a_bad_file_keeps_the_scene() {
     let bad = dir.path().join("bad.toml");
     std::fs::write(&bad, "[world]\ngravty = 1\n").unwrap();
     let err = other.apply(SimCommand::LoadScene(bad)).unwrap_err();
-    assert!(err.contains("gravty"), "{err}");
+    assert!(err.to_string().contains("gravty"), "{err}");
     assert_eq!(other.world().object_ids().len(), 5, "the scene stayed");
 }
 
@@ -349,7 +350,7 @@ fn custom_projectile_and_custom_mesh_checks() {
             to: Vec3::X,
         })
         .unwrap_err();
-    assert!(err.contains("projectile"), "{err}");
+    assert!(err.to_string().contains("projectile"), "{err}");
 }
 
 #[test]
@@ -397,7 +398,7 @@ fn every_example_scene_loads_and_the_runtime_one_starts_whole() {
     assert!(s.fragments > 20);
     let err = b.apply(SimCommand::LoadExample("nope".into())).unwrap_err();
     assert!(
-        err.contains("no example scene `nope`") && err.contains("runtime"),
+        err.to_string().contains("no example scene `nope`") && err.to_string().contains("runtime"),
         "{err}"
     );
 }

@@ -8,13 +8,14 @@ use glam::{DVec3, Vec3};
 use shatter_app::commands::{
     BondModel, MaterialPreset, MethodKind, Pattern, ProjectileSpec, Shape, ShapeChoice, SimCommand,
 };
+use shatter_app::error::AppError;
 use shatter_app::sim_bridge::check_custom_mesh;
 use shatter_app::ui::forms::{
     AddObjectForm, FireForm, ForceForm, SceneFileForm, ShapeKind, TransformForm,
 };
 use shatter_app::ui::state::{AddObjectPage, ClickOutcome, UiState, ground_hit};
 
-fn any_mesh(_: &Path) -> Result<(), String> {
+fn any_mesh(_: &Path) -> Result<(), AppError> {
     Ok(())
 }
 

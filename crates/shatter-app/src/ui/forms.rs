@@ -1,13 +1,16 @@
 //! The panels' text fields and their validation into typed commands.
 //!
 //! Each form is a plain struct of strings (what the user typed). `validate` turns it into
-//! a typed value or a [`FieldErrors`] naming every bad field; the panels show each message
-//! next to its field and send nothing.
+//! a typed value or a [`FieldErrors`] naming every bad field with a [`FormError`]; the
+//! panels show each error's message next to its field and send nothing.
 
-use std::collections::BTreeMap;
+mod errors;
+
 use std::path::{Path, PathBuf};
 
 use shatter_sim::ProjectileShape;
+
+pub use self::errors::{FieldErrors, FormError, MeshCheck};
 
 use crate::commands::{
     ForceSpec, MaterialPreset, MethodKind, ObjectSpec, Pattern, ProjectileSpec, Shape, ShapeChoice,
@@ -17,36 +20,6 @@ use crate::ui::fields::{
     parse_color, parse_count, parse_lifetime, parse_non_negative, parse_positive, parse_real,
     parse_vec3,
 };
-
-/// Messages for the fields that failed, keyed by field name.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct FieldErrors(pub BTreeMap<&'static str, String>);
-
-impl FieldErrors {
-    /// The message for `field`, if it failed.
-    pub fn get(&self, field: &str) -> Option<&str> {
-        self.0.get(field).map(String::as_str)
-    }
-
-    /// Whether no field failed.
-    pub fn is_empty(&self) -> bool {
-        self.0.is_empty()
-    }
-
-    /// Record the outcome of parsing `field`, returning the value if it parsed.
-    pub fn check<T>(&mut self, field: &'static str, r: Result<T, String>) -> Option<T> {
-        match r {
-            Ok(v) => Some(v),
-            Err(e) => {
-                self.0.insert(field, e);
-                None
-            }
-        }
-    }
-}
-
-/// Checks that a custom mesh file can be used; returns a message otherwise.
-pub type MeshCheck<'a> = &'a dyn Fn(&Path) -> Result<(), String>;
 
 /// Shape selector of the Add Object and Fire panels: a built-in shape or a file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -101,13 +74,17 @@ impl ShapeKind {
     }
 }
 
-fn shape_choice(kind: ShapeKind, path: &str, check: MeshCheck<'_>) -> Result<ShapeChoice, String> {
+fn shape_choice(
+    kind: ShapeKind,
+    path: &str,
+    check: MeshCheck<'_>,
+) -> Result<ShapeChoice, FormError> {
     Ok(match kind {
         ShapeKind::Builtin(s) => ShapeChoice::Builtin(s),
         ShapeKind::Custom => {
             let p = path.trim();
             if p.is_empty() {
-                return Err("give the path of an OBJ, STL or glTF file".to_owned());
+                return Err(FormError::NoMeshPath);
             }
             check(Path::new(p))?;
             ShapeChoice::Custom(PathBuf::from(p))
@@ -195,9 +172,11 @@ impl AddObjectForm {
         let color = e.check("color", parse_color(&self.color));
         let material = Some(self.material);
         if self.method != MethodKind::Tetra && random_vertices == Some(0) {
-            e.0.insert(
+            e.insert(
                 "random_vertices",
-                format!("{} needs at least 1 piece", self.method.name()),
+                FormError::NoPieces {
+                    method: self.method,
+                },
             );
         }
         let position = e.check("position", parse_vec3(&transform.position, parse_real));
@@ -384,27 +363,24 @@ impl Default for SceneFileForm {
 
 impl SceneFileForm {
     fn toml_path(&self) -> Result<PathBuf, FieldErrors> {
-        let mut e = FieldErrors::default();
         let p = self.path.trim();
         if p.is_empty() {
-            e.0.insert("path", "give a file name ending in .toml".to_owned());
+            Err(FieldErrors::single("path", FormError::NoScenePath))
         } else if Path::new(p).extension().and_then(|x| x.to_str()) != Some("toml") {
-            e.0.insert("path", format!("'{p}' does not end in .toml"));
-        }
-        if e.is_empty() {
-            Ok(PathBuf::from(p))
+            Err(FieldErrors::single(
+                "path",
+                FormError::NotToml { path: p.to_owned() },
+            ))
         } else {
-            Err(e)
+            Ok(PathBuf::from(p))
         }
     }
 
     /// The Save command, if the path can be written to.
     pub fn save(&self) -> Result<SimCommand, FieldErrors> {
         let path = self.toml_path()?;
-        if let Err(msg) = crate::scene_store::can_save(&path) {
-            let mut e = FieldErrors::default();
-            e.0.insert("path", msg);
-            return Err(e);
+        if let Err(e) = crate::scene_store::can_save(&path) {
+            return Err(FieldErrors::single("path", e));
         }
         Ok(SimCommand::SaveScene(path))
     }
@@ -413,9 +389,7 @@ impl SceneFileForm {
     pub fn load(&self) -> Result<SimCommand, FieldErrors> {
         let path = self.toml_path()?;
         if !crate::scene_store::exists(&path) {
-            let mut e = FieldErrors::default();
-            e.0.insert("path", format!("no file '{}'", path.display()));
-            return Err(e);
+            return Err(FieldErrors::single("path", FormError::NoSceneFile { path }));
         }
         Ok(SimCommand::LoadScene(path))
     }

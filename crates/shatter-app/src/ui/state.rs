@@ -5,6 +5,7 @@ use bevy::prelude::Resource;
 use glam::Vec3;
 
 use crate::commands::{BondModel, ForceSpec, ObjectId, ObjectSpec, ProjectileSpec, SimCommand};
+use crate::error::AppError;
 use crate::ui::forms::{
     AddObjectForm, FieldErrors, FireForm, ForceForm, MeshCheck, SceneFileForm, TransformForm,
 };
@@ -135,17 +136,17 @@ impl UiState {
         }
     }
 
-    /// The simulation refused `cmd` with `message`: show it in the status line and, for an
-    /// object that could not be built, next to the Add Object fields too (the user's
-    /// fields stay as they were, so they can be corrected).
-    pub fn command_failed(&mut self, cmd: &SimCommand, message: String) {
+    /// The simulation refused `cmd` with `error`: show its message in the status line and,
+    /// for an object that could not be built, next to the Add Object fields too (the
+    /// user's fields stay as they were, so they can be corrected).
+    pub fn command_failed(&mut self, cmd: &SimCommand, error: AppError) {
+        self.status = error.to_string();
         if matches!(cmd, SimCommand::AddObject(_) | SimCommand::EditObject(..)) {
             if matches!(cmd, SimCommand::AddObject(_)) {
                 self.awaiting_new_id = false;
             }
-            self.add_errors.0.insert("object", message.clone());
+            self.add_errors.insert("object", error);
         }
-        self.status = message;
     }
 
     /// Open the properties of `id` (Edit mode) with its current specification.

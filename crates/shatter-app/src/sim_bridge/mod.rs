@@ -4,45 +4,21 @@
 //! [`shatter_sim::World`], advances it in fixed steps, and reads back what to draw
 //! (fragment and projectile meshes once, poses every frame) and the statistics for the
 //! overlay. The conversions between the panels' [`ObjectSpec`] and the simulation's own
-//! spec live in [`crate::spec_convert`].
+//! spec live in [`crate::spec_convert`]; the scenes it loads in `scenes.rs`, the check of
+//! custom mesh files in `custom_mesh.rs`. What it refuses is an [`AppError`].
 
-use std::path::Path;
+mod custom_mesh;
+mod scenes;
 
 use bevy::prelude::{Quat, Resource, Vec3};
-use shatter_sim::scene::Scene;
 use shatter_sim::{ExplosionSpec, ProjectileShape, RunState, SimEvent, World};
 
+pub use self::custom_mesh::check_custom_mesh;
+pub use self::scenes::{DEFAULT_SCENE, EXAMPLE_SCENES};
 use crate::commands::{BondModel, ObjectId, ObjectSpec, ShapeChoice, SimCommand};
+pub use crate::error::AppError;
 use crate::render::fragment_mesh::{FlatPart, flat_trimesh, fragment_parts};
 use crate::spec_convert::{from_sim_spec, projectile_points, to_sim_spec};
-
-/// The scene the app opens with (also embedded in the web build).
-pub const DEFAULT_SCENE: &str = include_str!("../../../assets/scenes/default.toml");
-
-/// The example scenes of `assets/scenes`, built into the app (so the web page has them
-/// too), by name, in the order the Scene panel lists them.
-pub const EXAMPLE_SCENES: &[(&str, &str)] = &[
-    ("default", DEFAULT_SCENE),
-    ("bridge", include_str!("../../../assets/scenes/bridge.toml")),
-    (
-        "collapse",
-        include_str!("../../../assets/scenes/collapse.toml"),
-    ),
-    (
-        "runtime",
-        include_str!("../../../assets/scenes/runtime.toml"),
-    ),
-    (
-        "explosion",
-        include_str!("../../../assets/scenes/explosion.toml"),
-    ),
-    ("wall", include_str!("../../../assets/scenes/wall.toml")),
-    ("bird", include_str!("../../../assets/scenes/bird.toml")),
-    (
-        "thesis_joints",
-        include_str!("../../../assets/scenes/thesis_joints.toml"),
-    ),
-];
 
 /// Bevy's vector (glam 0.32) from the simulation's (glam 0.33).
 pub fn to_bevy(v: glam::Vec3) -> Vec3 {
@@ -151,34 +127,15 @@ impl SimBridge {
         }
     }
 
-    /// The default scene (`assets/scenes/default.toml`, embedded): a brick wall, the bird,
-    /// a glass pane and a crate on the ground. Should the bundled file ever fail to build
-    /// (this crate's tests check it does not), the error is logged and the world is empty.
-    pub fn default_scene() -> Self {
-        Self::from_scene_text(DEFAULT_SCENE).unwrap_or_else(|e| {
-            bevy::log::error!("default scene: {e}");
-            Self::default()
-        })
-    }
-
-    /// A bridge over the world of a scene file's text.
-    pub fn from_scene_text(text: &str) -> Result<Self, String> {
-        let scene = Scene::parse(text).map_err(|e| e.to_string())?;
-        let world = scene
-            .build_with_files(None, crate::picked_files::picked_files().clone())
-            .map_err(|e| e.to_string())?;
-        Ok(Self::from_world(world))
-    }
-
     /// The simulation (read only).
     pub fn world(&self) -> &World {
         &self.world
     }
 
     /// Apply a command. Returns the new object's id for [`SimCommand::AddObject`], and
-    /// `Err` with a message for the user when the simulation refuses it (nothing changes
-    /// then).
-    pub fn apply(&mut self, cmd: SimCommand) -> Result<Option<ObjectId>, String> {
+    /// `Err` with why when the simulation refuses it (nothing changes then); the error's
+    /// `Display` is the message for the user.
+    pub fn apply(&mut self, cmd: SimCommand) -> Result<Option<ObjectId>, AppError> {
         match cmd {
             SimCommand::Start => {
                 if self.world.run_state() == RunState::Paused {
@@ -198,7 +155,7 @@ impl SimBridge {
             }
             SimCommand::AddObject(spec) => {
                 let sim = to_sim_spec(&spec, None, self.bond_model)?;
-                let id = self.world.add_object(sim).map_err(|e| e.to_string())?;
+                let id = self.world.add_object(sim)?;
                 return Ok(Some(u64::from(id.0)));
             }
             SimCommand::EditObject(id, spec) => {
@@ -207,17 +164,13 @@ impl SimBridge {
                     .world
                     .object_spec(sid)
                     .cloned()
-                    .ok_or_else(|| format!("no object {id}"))?;
+                    .ok_or(AppError::NoObject(id))?;
                 let sim = to_sim_spec(&spec, Some(&base), self.bond_model)?;
-                self.world
-                    .edit_object(sid, sim)
-                    .map_err(|e| e.to_string())?;
+                self.world.edit_object(sid, sim)?;
                 self.new_build();
             }
             SimCommand::DeleteObject(id) => {
-                self.world
-                    .delete_object(sim_id(id)?)
-                    .map_err(|e| e.to_string())?;
+                self.world.delete_object(sim_id(id)?)?;
             }
             SimCommand::Fire { spec, from, to } => {
                 let primitive = match &spec.shape {
@@ -238,7 +191,7 @@ impl SimBridge {
                     from,
                     to,
                 };
-                p.validate("projectile").map_err(|e| e.to_string())?;
+                p.validate("projectile")?;
                 self.world.fire(p);
             }
             SimCommand::Explode {
@@ -251,56 +204,18 @@ impl SimBridge {
                     radius: radius as f32,
                     power: power as f32,
                 };
-                e.validate("explosion").map_err(|e| e.to_string())?;
+                e.validate("explosion")?;
                 self.world.explode(e);
             }
             SimCommand::SetBondModel(m) => self.bond_model = Some(m),
             SimCommand::SaveScene(p) => {
-                let text = self.world.to_scene_toml().map_err(|e| e.to_string())?;
+                let text = self.world.to_scene_toml()?;
                 crate::scene_store::write(&p, &text)?;
             }
             SimCommand::LoadScene(p) => self.load_scene(&p)?,
             SimCommand::LoadExample(name) => self.load_example(&name)?,
         }
         Ok(None)
-    }
-
-    /// Replace the world with a scene file's; on error the current scene stays.
-    pub fn load_scene(&mut self, path: &Path) -> Result<(), String> {
-        let scene = if cfg!(target_arch = "wasm32") {
-            let text = crate::scene_store::read(path)?;
-            Scene::parse(&text).map_err(|e| format!("{}: {e}", path.display()))?
-        } else {
-            // From the file, so mesh paths resolve relative to the scene's folder.
-            Scene::load(path).map_err(|e| e.to_string())?
-        };
-        let world = scene
-            .build_with_files(self.bond_model, crate::picked_files::picked_files().clone())
-            .map_err(|e| e.to_string())?;
-        self.world = world;
-        self.accumulator = 0.0;
-        self.new_build();
-        Ok(())
-    }
-
-    /// Replace the world with the example scene `name` ([`EXAMPLE_SCENES`]); on error the
-    /// current scene stays.
-    pub fn load_example(&mut self, name: &str) -> Result<(), String> {
-        let Some((_, text)) = EXAMPLE_SCENES.iter().find(|(n, _)| *n == name) else {
-            let names: Vec<&str> = EXAMPLE_SCENES.iter().map(|(n, _)| *n).collect();
-            return Err(format!(
-                "no example scene `{name}` (there are: {})",
-                names.join(", ")
-            ));
-        };
-        let scene = Scene::parse(text).map_err(|e| format!("{name}.toml: {e}"))?;
-        let world = scene
-            .build_with_files(self.bond_model, crate::picked_files::picked_files().clone())
-            .map_err(|e| e.to_string())?;
-        self.world = world;
-        self.accumulator = 0.0;
-        self.new_build();
-        Ok(())
     }
 
     fn new_build(&mut self) {
@@ -472,41 +387,8 @@ impl SimBridge {
     }
 }
 
-fn sim_id(id: ObjectId) -> Result<shatter_sim::ObjectId, String> {
+fn sim_id(id: ObjectId) -> Result<shatter_sim::ObjectId, AppError> {
     u32::try_from(id)
         .map(shatter_sim::ObjectId)
-        .map_err(|_| format!("no object {id}"))
-}
-
-/// Whether a custom mesh file can be used (for the forms' validation): the extension is a
-/// mesh format, and the file reads as a mesh.
-pub fn check_custom_mesh(path: &Path) -> Result<(), String> {
-    if shatter_geom::io::MeshFormat::from_path(path).is_none() {
-        return Err(format!(
-            "'{}': expected an .obj, .stl, .gltf or .glb file",
-            path.display()
-        ));
-    }
-    // A mesh picked in the web page lives in memory.
-    if !crate::picked_files::picked_files().contains(path) {
-        let meta = std::fs::metadata(path).map_err(|e| {
-            if cfg!(target_arch = "wasm32") {
-                format!(
-                    "no mesh '{}': add it with the page's \"Add mesh…\" button",
-                    path.display()
-                )
-            } else {
-                format!("cannot read '{}': {e}", path.display())
-            }
-        })?;
-        if !meta.is_file() {
-            return Err(format!("'{}' is not a file", path.display()));
-        }
-    }
-    let mesh = shatter_geom::io::load_mesh_from(path, &crate::picked_files::sources())
-        .map_err(|e| e.to_string())?;
-    if mesh.triangles.is_empty() {
-        return Err(format!("'{}' has no triangles", path.display()));
-    }
-    Ok(())
+        .map_err(|_| AppError::NoObject(id))
 }

@@ -1,0 +1,97 @@
+//! The scenes a [`SimBridge`] is built from or replaced by: the default scene, the
+//! example scenes built into the app, and scene files (from the disk, or from the web
+//! page's storage in the web build, see [`crate::scene_store`]).
+
+use std::path::Path;
+
+use shatter_sim::scene::Scene;
+
+use super::SimBridge;
+use crate::error::AppError;
+
+/// The scene the app opens with (also embedded in the web build).
+pub const DEFAULT_SCENE: &str = include_str!("../../../../assets/scenes/default.toml");
+
+/// The example scenes of `assets/scenes`, built into the app (so the web page has them
+/// too), by name, in the order the Scene panel lists them.
+pub const EXAMPLE_SCENES: &[(&str, &str)] = &[
+    ("default", DEFAULT_SCENE),
+    (
+        "bridge",
+        include_str!("../../../../assets/scenes/bridge.toml"),
+    ),
+    (
+        "collapse",
+        include_str!("../../../../assets/scenes/collapse.toml"),
+    ),
+    (
+        "runtime",
+        include_str!("../../../../assets/scenes/runtime.toml"),
+    ),
+    (
+        "explosion",
+        include_str!("../../../../assets/scenes/explosion.toml"),
+    ),
+    ("wall", include_str!("../../../../assets/scenes/wall.toml")),
+    ("bird", include_str!("../../../../assets/scenes/bird.toml")),
+    (
+        "thesis_joints",
+        include_str!("../../../../assets/scenes/thesis_joints.toml"),
+    ),
+];
+
+impl SimBridge {
+    /// The default scene (`assets/scenes/default.toml`, embedded): a brick wall, the bird,
+    /// a glass pane and a crate on the ground. Should the bundled file ever fail to build
+    /// (this crate's tests check it does not), the error is logged and the world is empty.
+    pub fn default_scene() -> Self {
+        Self::from_scene_text(DEFAULT_SCENE).unwrap_or_else(|e| {
+            bevy::log::error!("default scene: {e}");
+            Self::default()
+        })
+    }
+
+    /// A bridge over the world of a scene file's text.
+    pub fn from_scene_text(text: &str) -> Result<Self, AppError> {
+        let scene = Scene::parse(text)?;
+        let world = scene.build_with_files(None, crate::picked_files::picked_files().clone())?;
+        Ok(Self::from_world(world))
+    }
+
+    /// Replace the world with a scene file's; on error the current scene stays.
+    pub fn load_scene(&mut self, path: &Path) -> Result<(), AppError> {
+        let scene = if cfg!(target_arch = "wasm32") {
+            let text = crate::scene_store::read(path)?;
+            Scene::parse(&text).map_err(|source| AppError::SceneText {
+                path: path.into(),
+                source,
+            })?
+        } else {
+            // From the file, so mesh paths resolve relative to the scene's folder.
+            Scene::load(path)?
+        };
+        self.replace_world(&scene)
+    }
+
+    /// Replace the world with the example scene `name` ([`EXAMPLE_SCENES`]); on error the
+    /// current scene stays.
+    pub fn load_example(&mut self, name: &str) -> Result<(), AppError> {
+        let Some(&(name, text)) = EXAMPLE_SCENES.iter().find(|(n, _)| *n == name) else {
+            return Err(AppError::UnknownExample {
+                name: name.to_owned(),
+            });
+        };
+        let scene = Scene::parse(text).map_err(|source| AppError::ExampleText { name, source })?;
+        self.replace_world(&scene)
+    }
+
+    /// Build `scene` (with the bond model chosen in the panel) and make it the world.
+    fn replace_world(&mut self, scene: &Scene) -> Result<(), AppError> {
+        let world =
+            scene.build_with_files(self.bond_model, crate::picked_files::picked_files().clone())?;
+        self.world = world;
+        self.accumulator = 0.0;
+        self.new_build();
+        Ok(())
+    }
+}
