@@ -59,8 +59,9 @@ pub use components::{Fragment, ShatterBody, ShatterObject};
 /// last physics step (avian runs in `FixedPostUpdate` by default).
 #[derive(Debug, Clone)]
 pub struct ShatterPlugin {
-    /// The material for the cut (interior) faces of fragments; `None`: a grey
-    /// `StandardMaterial` made by the plugin.
+    /// The material for the cut (interior) faces of fragments; `None`: a
+    /// `StandardMaterial` of [`shatter_geom::io::INTERIOR_COLOR`] made by the plugin (the
+    /// colour shatter's files give cut faces).
     pub interior_material: Option<Handle<StandardMaterial>>,
     /// Scales every contact force before it loads the bonds (1: as measured).
     pub contact_scale: f32,

@@ -201,7 +201,10 @@ pub(crate) fn finish_fractures(
         };
         let interior = settings
             .interior_material
-            .get_or_insert_with(|| materials.add(Color::srgb(0.55, 0.55, 0.55)))
+            .get_or_insert_with(|| {
+                let [r, g, b] = shatter_geom::io::INTERIOR_COLOR;
+                materials.add(Color::linear_rgb(r, g, b))
+            })
             .clone();
         let surface = material
             .map(|m| m.0.clone())

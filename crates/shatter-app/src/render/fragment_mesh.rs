@@ -15,9 +15,6 @@ use shatter_geom::TriMesh;
 use shatter_geom::fracture::Fragment;
 use shatter_geom::model::Material;
 
-/// How much darker interior (cut) faces are than the surface.
-pub const INTERIOR_SHADE: f32 = 0.45;
-
 /// Flat-shaded vertex data of one fragment.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct FlatMesh {
@@ -112,10 +109,10 @@ fn face_normal(a: glam::DVec3, b: glam::DVec3, c: glam::DVec3) -> [f32; 3] {
         .to_array()
 }
 
-/// The colour of interior faces for a surface colour (linear RGB in `[0, 1]`).
+/// The colour of interior faces for a surface colour (linear RGB in `[0, 1]`): the one
+/// rule, [`shatter_geom::io::interior_color_of`].
 pub fn interior_color(surface: [f32; 3]) -> [f32; 3] {
-    // Darker, and pulled slightly towards a neutral grey so cut faces read as raw material.
-    surface.map(|c| (c * INTERIOR_SHADE + 0.04).min(1.0))
+    shatter_geom::io::interior_color_of(surface)
 }
 
 /// Split `fragment` into flat-shaded triangles coloured by `color` (linear RGB in

@@ -53,6 +53,23 @@ pub const SURFACE_COLOR: [f32; 3] = [0.8, 0.8, 0.8];
 /// Base colour of interior faces.
 pub const INTERIOR_COLOR: [f32; 3] = [0.8, 0.35, 0.2];
 
+/// How much of an object's own colour its cut faces keep ([`interior_color_of`]).
+pub const INTERIOR_SHADE: f32 = 0.45;
+
+/// The colour of the cut faces of an object that has a colour of its own (linear RGB in
+/// `[0, 1]`; the sandbox's objects, a recorded run): darker, and pulled slightly towards
+/// a neutral grey so cut faces read as raw material. The one rule for it; a file's
+/// fragments without a colour of their own take [`INTERIOR_COLOR`].
+///
+/// ```
+/// use shatter_geom::io::interior_color_of;
+/// let [r, g, b] = interior_color_of([1.0, 0.0, 0.0]);
+/// assert!((r - 0.49).abs() < 1e-6 && g == 0.04 && b == 0.04);
+/// ```
+pub fn interior_color_of(surface: [f32; 3]) -> [f32; 3] {
+    surface.map(|c| (c * INTERIOR_SHADE + 0.04).min(1.0))
+}
+
 impl<'a> ExportObject<'a> {
     /// An object whose triangles are all surface.
     pub fn new(name: &'a str, mesh: &'a TriMesh) -> Self {

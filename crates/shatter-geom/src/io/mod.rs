@@ -49,8 +49,8 @@ mod warning;
 
 pub use error::MeshIoError;
 pub use export::{
-    ExportObject, INTERIOR_COLOR, INTERIOR_MATERIAL, SURFACE_COLOR, SURFACE_MATERIAL,
-    fragment_names,
+    ExportObject, INTERIOR_COLOR, INTERIOR_MATERIAL, INTERIOR_SHADE, SURFACE_COLOR,
+    SURFACE_MATERIAL, fragment_names, interior_color_of,
 };
 pub use files::{FileSource, FileSystem, Layered, MemoryFiles, NoFiles};
 pub use gltf::{

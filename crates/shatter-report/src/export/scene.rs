@@ -34,7 +34,7 @@ impl FragmentMesh {
             triangles,
             interior: Vec::new(),
             color,
-            interior_color: color.map(|c| c * 0.55),
+            interior_color: shatter_geom::io::interior_color_of(color),
         }
     }
 }

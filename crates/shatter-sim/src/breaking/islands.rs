@@ -11,29 +11,9 @@ use std::collections::BTreeMap;
 
 use glam::{DVec3, Vec3};
 
+use shatter_geom::util::UnionFind;
+
 use super::bonds::{BondState, Graph};
-
-/// Union-find with path halving; the smaller root wins, so roots are deterministic.
-struct UnionFind(Vec<u32>);
-
-impl UnionFind {
-    fn find(&mut self, mut i: u32) -> u32 {
-        while self.0[i as usize] != i {
-            let p = self.0[self.0[i as usize] as usize];
-            self.0[i as usize] = p;
-            i = p;
-        }
-        i
-    }
-
-    fn union(&mut self, a: u32, b: u32) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        if ra != rb {
-            let (lo, hi) = if ra < rb { (ra, rb) } else { (rb, ra) };
-            self.0[hi as usize] = lo;
-        }
-    }
-}
 
 /// The connected components (fragment lists, ascending) of the fragments on `body`,
 /// ordered by their smallest fragment. `body_of` gives each fragment's body (any key the
@@ -45,20 +25,21 @@ pub fn components<K: Copy + PartialEq>(
     body: K,
 ) -> Vec<Vec<u32>> {
     let n = body_of.len();
-    let mut uf = UnionFind((0..n as u32).collect());
+    // The smaller root wins, so the components come out in a deterministic order.
+    let mut uf = UnionFind::new(n);
     for (b, bond) in graph.bonds.iter().enumerate() {
         if state.broken.get(b).is_none_or(|x| *x) {
             continue;
         }
         let on = |f: u32| body_of.get(f as usize).copied().flatten() == Some(body);
         if on(bond.a) && on(bond.b) {
-            uf.union(bond.a, bond.b);
+            uf.union(bond.a as usize, bond.b as usize);
         }
     }
-    let mut groups: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
+    let mut groups: BTreeMap<usize, Vec<u32>> = BTreeMap::new();
     for f in 0..n as u32 {
         if body_of[f as usize] == Some(body) {
-            groups.entry(uf.find(f)).or_default().push(f);
+            groups.entry(uf.find(f as usize)).or_default().push(f);
         }
     }
     groups.into_values().collect()
