@@ -8,7 +8,11 @@
 // SwiftShader) and checks the app's console contract:
 //   1. a `SHATTER_STATE {json}` line with frames > 0 (first frame rendered);
 //   2. after Enter on the focused canvas: running == true;
-//   3. after left clicks on the wall (~640,380): bonds_broken > 0.
+//   3. after left clicks on the wall (~640,380): bonds_broken > 0 (screenshot
+//      <screenshot>-wall.png);
+//   4. "Add mesh…" takes a good OBJ and refuses a broken one;
+//   5. index.html?scene=textured draws the textured example (textured_materials >= 2)
+//      and its balls break it after Enter (screenshot <screenshot>-textured.png).
 // Prints a summary JSON; exits 0 only if every step held, else 1.
 //
 // Environment (all optional):
@@ -18,7 +22,7 @@
 //   SHATTER_E2E_FIRST_FRAME_S   timeout for the first frame   (default 300)
 //   SHATTER_E2E_RUNNING_S       timeout for running == true   (default 60)
 //   SHATTER_E2E_BROKEN_S        timeout for bonds_broken > 0  (default 120)
-//   SHATTER_E2E_TOTAL_S         hard limit for the whole run  (default 660)
+//   SHATTER_E2E_TOTAL_S         hard limit for the whole run  (default 900)
 //   SHATTER_E2E_CLICK_X/_Y      click point in canvas px      (default 640,380)
 //   SHATTER_E2E_HEADFUL=1       show the browser window (debugging)
 
@@ -42,7 +46,7 @@ const num = (name, dflt) => {
 const FIRST_FRAME_MS = num('SHATTER_E2E_FIRST_FRAME_S', 300) * 1000;
 const RUNNING_MS = num('SHATTER_E2E_RUNNING_S', 60) * 1000;
 const BROKEN_MS = num('SHATTER_E2E_BROKEN_S', 120) * 1000;
-const TOTAL_MS = num('SHATTER_E2E_TOTAL_S', 660) * 1000;
+const TOTAL_MS = num('SHATTER_E2E_TOTAL_S', 900) * 1000;
 const CLICK_X = num('SHATTER_E2E_CLICK_X', 640);
 const CLICK_Y = num('SHATTER_E2E_CLICK_Y', 380);
 const VIEWPORT = { width: 1280, height: 720 };
@@ -337,12 +341,12 @@ let server = null;
 let page = null;
 let finished = false;
 
-async function shot() {
+async function shot(file = SCREENSHOT) {
   if (!page) return null;
   try {
-    fs.mkdirSync(path.dirname(SCREENSHOT), { recursive: true });
-    const buf = await page.screenshot({ path: SCREENSHOT, timeout: 30000 });
-    return { path: SCREENSHOT, distinct_colours: pngDistinctColours(buf) };
+    fs.mkdirSync(path.dirname(file), { recursive: true });
+    const buf = await page.screenshot({ path: file, timeout: 30000 });
+    return { path: file, distinct_colours: pngDistinctColours(buf) };
   } catch (e) {
     log('screenshot failed:', e.message);
     return { path: null, error: e.message };
@@ -590,10 +594,46 @@ async function main() {
   log('add mesh:', good, '|', bad);
   if (failures.length) return finish(false);
 
-  // Let the debris fly for a moment, then take the final state + screenshot.
+  // Let the debris fly for a moment, then keep the wall's screenshot.
   await sleep(2000);
   checkFatal('after bonds broke');
-  return finish(true, { clicks, extra_enters: extraEnters, add_mesh: { good, bad } });
+  const wallShot = await shot(SCREENSHOT.replace(/\.png$/, '') + '-wall.png');
+
+  // 5. A user's textured models in the page: the `textured` example (the spider OBJ
+  //    with its MTL and five JPEG textures, Khronos' textured box GLB; the app carries
+  //    their files) opened from the address, drawn with their textures, and broken by
+  //    the scene's balls once started.
+  const texAt = states.length;
+  await page.goto(`${url}?scene=textured`, { waitUntil: 'load', timeout: 120000 });
+  hit = await waitForState(
+    'a SHATTER_STATE of the textured scene with textured materials drawn',
+    (s) => s.frames > 0 && s.textured_materials >= 2 && s.fragments >= 20,
+    FIRST_FRAME_MS,
+    { from: texAt },
+  );
+  log('textured scene:', JSON.stringify(hit.state));
+  const texturedFirst = hit.state;
+  await focusAndEnter();
+  hit = await waitForState(
+    'a SHATTER_STATE with bonds_broken > 0 in the textured scene',
+    (s) => s.running === true && s.bonds_broken > 0,
+    BROKEN_MS,
+    { from: states.length },
+  );
+  await sleep(2000);
+  checkFatal('after the textured scene broke');
+  const texturedShot = await shot(SCREENSHOT.replace(/\.png$/, '') + '-textured.png');
+  if (texturedShot && texturedShot.distinct_colours !== null && texturedShot.distinct_colours < 20) {
+    failures.push(`textured scene screenshot has only ${texturedShot.distinct_colours} colours`);
+    return finish(false);
+  }
+  return finish(true, {
+    clicks,
+    extra_enters: extraEnters,
+    add_mesh: { good, bad },
+    wall_screenshot: wallShot,
+    textured: { first: texturedFirst, broken: hit.state, screenshot: texturedShot },
+  });
 }
 
 main().catch((e) => {

@@ -1,8 +1,11 @@
 //! `shatter-app`: the interactive fracture sandbox.
 //!
 //! ```text
-//! shatter-app [--autotest DIR]
+//! shatter-app [--autotest DIR] [--scene NAME]
 //! ```
+//!
+//! `--scene` opens one of the example scenes instead of the default (the web page takes
+//! it from its address: `index.html?scene=textured`).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -10,8 +13,9 @@ use std::process::ExitCode;
 use bevy::prelude::*;
 use bevy::window::{PresentMode, WindowResolution};
 use shatter_app::ShatterAppPlugin;
+use shatter_app::sim_bridge::SimBridge;
 
-const USAGE: &str = "usage: shatter-app [--autotest DIR]";
+const USAGE: &str = "usage: shatter-app [--autotest DIR] [--scene NAME]";
 
 /// Called by the web page (web/index.html) with a file the user picked: a mesh file, which
 /// the Custom shape of the Add Object and Fire panels can then name, or a file a mesh
@@ -47,6 +51,9 @@ enum ArgsError {
     /// `--autotest` without a folder.
     #[error("--autotest needs a folder")]
     NoFolder,
+    /// `--scene` without a name.
+    #[error("--scene needs the name of an example scene")]
+    NoScene,
     /// `-h` / `--help`: the usage.
     #[error("{}", USAGE)]
     Help,
@@ -58,8 +65,10 @@ enum ArgsError {
     },
 }
 
-fn parse_args(args: &[String]) -> Result<Option<PathBuf>, ArgsError> {
+/// The command line: the autotest's folder and the example scene to open.
+fn parse_args(args: &[String]) -> Result<(Option<PathBuf>, Option<String>), ArgsError> {
     let mut autotest = None;
+    let mut scene = None;
     let mut it = args.iter();
     while let Some(a) = it.next() {
         match a.as_str() {
@@ -67,6 +76,7 @@ fn parse_args(args: &[String]) -> Result<Option<PathBuf>, ArgsError> {
                 let dir = it.next().ok_or(ArgsError::NoFolder)?;
                 autotest = Some(PathBuf::from(dir));
             }
+            "--scene" => scene = Some(it.next().ok_or(ArgsError::NoScene)?.clone()),
             "-h" | "--help" => return Err(ArgsError::Help),
             other => {
                 return Err(ArgsError::Unknown {
@@ -75,12 +85,28 @@ fn parse_args(args: &[String]) -> Result<Option<PathBuf>, ArgsError> {
             }
         }
     }
-    Ok(autotest)
+    Ok((autotest, scene))
+}
+
+/// The example scene the page's address asks for (`?scene=NAME`), in the web build.
+#[cfg(target_arch = "wasm32")]
+fn page_scene() -> Option<String> {
+    let search = web_sys::window()?.location().search().ok()?;
+    search
+        .trim_start_matches('?')
+        .split('&')
+        .find_map(|kv| kv.strip_prefix("scene="))
+        .map(str::to_owned)
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+fn page_scene() -> Option<String> {
+    None
 }
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let autotest = match parse_args(&args) {
+    let (autotest, scene) = match parse_args(&args) {
         Ok(a) => a,
         Err(msg) => {
             eprintln!("{msg}");
@@ -108,11 +134,30 @@ fn main() -> ExitCode {
         prevent_default_event_handling: true,
         ..default()
     };
-    let exit = App::new()
-        .add_plugins(DefaultPlugins.set(WindowPlugin {
-            primary_window: Some(window),
-            ..default()
-        }))
+    let mut app = App::new();
+    app.add_plugins(DefaultPlugins.set(WindowPlugin {
+        primary_window: Some(window),
+        ..default()
+    }));
+    if let Some(name) = scene.or_else(page_scene) {
+        let mut bridge = SimBridge::default();
+        match bridge.load_example(&name) {
+            Ok(()) => {
+                app.insert_resource(bridge);
+            }
+            Err(e) => {
+                // A bad name on the command line is refused; in the page, the default
+                // scene opens and the console says why.
+                if cfg!(target_arch = "wasm32") {
+                    error!("scene={name}: {e}");
+                } else {
+                    eprintln!("--scene {name}: {e}");
+                    return ExitCode::from(2);
+                }
+            }
+        }
+    }
+    let exit = app
         .add_plugins(ShatterAppPlugin {
             autotest,
             log_state: cfg!(target_arch = "wasm32"),

@@ -5,6 +5,7 @@
 use bevy::prelude::*;
 use serde_json::json;
 
+use crate::render::scene::RenderStats;
 use crate::sim_bridge::SimBridge;
 use crate::ui::FrameRate;
 
@@ -37,9 +38,16 @@ impl Plugin for StateLogPlugin {
 /// The line for a state and a frame count: every [`SimStats`](crate::sim_bridge::SimStats)
 /// field, plus `frames`.
 pub fn state_line(bridge: &SimBridge, frames: u64) -> String {
+    state_line_with(bridge, frames, 0)
+}
+
+/// [`state_line`], plus `textured_materials`: the drawn file materials that carry a
+/// texture ([`RenderStats`]), so the web page's test sees a textured model drawn.
+pub fn state_line_with(bridge: &SimBridge, frames: u64, textured_materials: usize) -> String {
     let mut value = serde_json::to_value(bridge.stats()).unwrap_or_else(|_| json!({}));
     if let Some(map) = value.as_object_mut() {
         map.insert("frames".to_owned(), json!(frames));
+        map.insert("textured_materials".to_owned(), json!(textured_materials));
     }
     format!("SHATTER_STATE {value}")
 }
@@ -49,8 +57,10 @@ fn log_state(
     mut timer: ResMut<StateLogTimer>,
     bridge: Res<SimBridge>,
     rate: Res<FrameRate>,
+    render: Option<Res<RenderStats>>,
 ) {
     if timer.0.tick(time.delta()).just_finished() {
-        info!("{}", state_line(&bridge, rate.frames));
+        let textured = render.map_or(0, |r| r.textured_materials);
+        info!("{}", state_line_with(&bridge, rate.frames, textured));
     }
 }

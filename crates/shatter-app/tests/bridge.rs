@@ -443,3 +443,34 @@ fn a_textured_custom_object_keeps_its_texture_and_uvs() {
     assert!(textured >= 8, "{textured} textured parts");
     assert!(interior >= 8, "{interior} interior parts");
 }
+
+#[test]
+fn the_textured_example_brings_its_files_and_draws_them_textured() {
+    let mut b = SimBridge::default_scene();
+    b.load_example("textured").unwrap();
+    // The files come with the app, under the paths the scene names (the web page has no
+    // disk to read them from).
+    let files = shatter_app::picked_files::picked_files();
+    for (path, bytes) in shatter_app::sim_bridge::EXAMPLE_FILES {
+        assert_eq!(files.get(path).as_deref(), Some(*bytes), "{path}");
+    }
+    let objects: std::collections::BTreeSet<_> =
+        b.poses().into_iter().map(|p| p.key.object).collect();
+    assert_eq!(objects.len(), 2, "the spider and the box");
+    let mut textured = std::collections::BTreeSet::new();
+    for pose in b.poses() {
+        for part in b.piece_parts(pose.key).unwrap() {
+            if part
+                .material
+                .as_ref()
+                .is_some_and(|(_, m)| m.base_color_texture.is_some())
+            {
+                textured.insert(pose.key.object);
+            }
+        }
+    }
+    assert_eq!(
+        textured, objects,
+        "both models are drawn with their textures"
+    );
+}

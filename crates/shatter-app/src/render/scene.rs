@@ -38,6 +38,14 @@ struct PieceEntities {
     file_materials: HashMap<(u32, ObjectId, u32), Handle<StandardMaterial>>,
 }
 
+/// What the renderer draws, for the state line the web page reads
+/// ([`crate::state_log`]).
+#[derive(Resource, Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct RenderStats {
+    /// Materials of file models in use that carry a base-colour texture.
+    pub textured_materials: usize,
+}
+
 /// Marks an entity drawing a fragment.
 #[derive(Component, Debug, Clone, Copy)]
 pub struct PieceMarker(pub PieceKey);
@@ -52,6 +60,7 @@ impl Plugin for SceneRenderPlugin {
                 ..default()
             })
             .init_resource::<PieceEntities>()
+            .init_resource::<RenderStats>()
             .add_systems(
                 Startup,
                 move |commands: Commands,
@@ -157,6 +166,7 @@ fn sync_pieces(
     mut materials: ResMut<Assets<StandardMaterial>>,
     mut images: ResMut<Assets<Image>>,
     mut transforms: Query<&mut Transform, With<PieceMarker>>,
+    mut stats: ResMut<RenderStats>,
 ) {
     let poses = bridge.poses();
     let mut alive = std::collections::HashSet::with_capacity(poses.len());
@@ -214,4 +224,16 @@ fn sync_pieces(
     pieces
         .file_materials
         .retain(|(build, _, _), _| live.contains(build));
+    let textured = pieces
+        .file_materials
+        .values()
+        .filter(|h| {
+            materials
+                .get(*h)
+                .is_some_and(|m| m.base_color_texture.is_some())
+        })
+        .count();
+    stats.set_if_neq(RenderStats {
+        textured_materials: textured,
+    });
 }

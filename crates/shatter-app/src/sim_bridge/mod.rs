@@ -14,7 +14,7 @@ use bevy::prelude::{Quat, Resource, Vec3};
 use shatter_sim::{ExplosionSpec, ProjectileShape, RunState, SimEvent, World};
 
 pub use self::custom_mesh::check_custom_mesh;
-pub use self::scenes::{DEFAULT_SCENE, EXAMPLE_SCENES};
+pub use self::scenes::{DEFAULT_SCENE, EXAMPLE_FILES, EXAMPLE_SCENES};
 use crate::commands::{BondModel, ObjectId, ObjectSpec, ShapeChoice, SimCommand};
 pub use crate::error::AppError;
 use crate::render::fragment_mesh::{FlatPart, flat_trimesh, fragment_parts};

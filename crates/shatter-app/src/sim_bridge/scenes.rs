@@ -38,6 +38,48 @@ pub const EXAMPLE_SCENES: &[(&str, &str)] = &[
         "thesis_joints",
         include_str!("../../../../assets/scenes/thesis_joints.toml"),
     ),
+    (
+        "textured",
+        include_str!("../../../../assets/scenes/textured.toml"),
+    ),
+];
+
+/// The files the example scenes name (`textured`: the spider OBJ with its MTL and JPEG
+/// textures, the textured box GLB), built into the app under the paths the scenes give,
+/// so an example loads the same from any folder and in the web page.
+pub const EXAMPLE_FILES: &[(&str, &[u8])] = &[
+    (
+        "../../tests/corpus/obj/spider/spider.obj",
+        include_bytes!("../../../../tests/corpus/obj/spider/spider.obj"),
+    ),
+    (
+        "../../tests/corpus/obj/spider/spider.mtl",
+        include_bytes!("../../../../tests/corpus/obj/spider/spider.mtl"),
+    ),
+    (
+        "../../tests/corpus/obj/spider/SpiderTex.jpg",
+        include_bytes!("../../../../tests/corpus/obj/spider/SpiderTex.jpg"),
+    ),
+    (
+        "../../tests/corpus/obj/spider/drkwood2.jpg",
+        include_bytes!("../../../../tests/corpus/obj/spider/drkwood2.jpg"),
+    ),
+    (
+        "../../tests/corpus/obj/spider/engineflare1.jpg",
+        include_bytes!("../../../../tests/corpus/obj/spider/engineflare1.jpg"),
+    ),
+    (
+        "../../tests/corpus/obj/spider/wal67ar_small.jpg",
+        include_bytes!("../../../../tests/corpus/obj/spider/wal67ar_small.jpg"),
+    ),
+    (
+        "../../tests/corpus/obj/spider/wal69ar_small.jpg",
+        include_bytes!("../../../../tests/corpus/obj/spider/wal69ar_small.jpg"),
+    ),
+    (
+        "../../tests/corpus/gltf/BoxTextured.glb",
+        include_bytes!("../../../../tests/corpus/gltf/BoxTextured.glb"),
+    ),
 ];
 
 impl SimBridge {
@@ -82,6 +124,12 @@ impl SimBridge {
             });
         };
         let scene = Scene::parse(text).map_err(|source| AppError::ExampleText { name, source })?;
+        let files = crate::picked_files::picked_files();
+        for (path, bytes) in EXAMPLE_FILES {
+            if !files.contains(path) {
+                files.insert(path, bytes.to_vec());
+            }
+        }
         self.replace_world(&scene)
     }
 
