@@ -3,6 +3,7 @@
 
 use glam::DVec3;
 
+use super::retain_triangles;
 use crate::fracture::kernel::{Piece, is_surface};
 use crate::util::{FastMap, UnionFind};
 
@@ -49,18 +50,7 @@ pub(super) fn cancel_shared_caps(p: &mut Piece, member: &mut Vec<u32>, eps: f64)
             }
         }
     }
-    let mut keep = 0;
-    for t in 0..p.tris.len() {
-        if !remove[t] {
-            p.tris[keep] = p.tris[t];
-            p.tags[keep] = p.tags[t];
-            member[keep] = member[t];
-            keep += 1;
-        }
-    }
-    p.tris.truncate(keep);
-    p.tags.truncate(keep);
-    member.truncate(keep);
+    retain_triangles(p, member, |t, _| !remove[t]);
 }
 
 /// Removes each pair of cap triangles of two different pieces made of the same three
@@ -106,18 +96,7 @@ fn cancel_opposite_triangles(p: &mut Piece, member: &mut Vec<u32>) {
     if !any {
         return;
     }
-    let mut keep = 0;
-    for t in 0..p.tris.len() {
-        if !remove[t] {
-            p.tris[keep] = p.tris[t];
-            p.tags[keep] = p.tags[t];
-            member[keep] = member[t];
-            keep += 1;
-        }
-    }
-    p.tris.truncate(keep);
-    p.tags.truncate(keep);
-    member.truncate(keep);
+    retain_triangles(p, member, |t, _| !remove[t]);
 }
 
 /// The edge-connected regions of cap triangles per (tag, piece).

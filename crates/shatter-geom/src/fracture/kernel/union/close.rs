@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use super::UnionError;
+use super::{UnionError, retain_triangles};
 use crate::fracture::kernel::Piece;
 use crate::util::{FastMap, FastSet};
 
@@ -71,18 +71,7 @@ pub(super) fn close_t_junctions(
         if !any {
             return Err(UnionError::Open);
         }
-        let mut keep = 0;
-        for t in 0..p.tris.len() {
-            if !split_done[t] {
-                p.tris[keep] = p.tris[t];
-                p.tags[keep] = p.tags[t];
-                member[keep] = member[t];
-                keep += 1;
-            }
-        }
-        p.tris.truncate(keep);
-        p.tags.truncate(keep);
-        member.truncate(keep);
+        retain_triangles(p, member, |t, _| !split_done[t]);
         for (tri, tag, m) in new_tris {
             p.tris.push(tri);
             p.tags.push(tag);

@@ -97,17 +97,27 @@ fn weld_within(p: &mut Piece, member: &mut Vec<u32>, eps: f64) {
         remap.push(i);
     }
     p.pos = pos;
-    let mut keep = 0;
+    for tri in &mut p.tris {
+        *tri = tri.map(|i| remap[i as usize]);
+    }
+    retain_triangles(p, member, |_, tri| {
+        tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2]
+    });
+}
+
+/// Keeps the triangles `keep(index, triangle)` accepts, with their tags and members, in
+/// order.
+fn retain_triangles(p: &mut Piece, member: &mut Vec<u32>, keep: impl Fn(usize, [u32; 3]) -> bool) {
+    let mut kept = 0;
     for t in 0..p.tris.len() {
-        let tri = p.tris[t].map(|i| remap[i as usize]);
-        if tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2] {
-            p.tris[keep] = tri;
-            p.tags[keep] = p.tags[t];
-            member[keep] = member[t];
-            keep += 1;
+        if keep(t, p.tris[t]) {
+            p.tris[kept] = p.tris[t];
+            p.tags[kept] = p.tags[t];
+            member[kept] = member[t];
+            kept += 1;
         }
     }
-    p.tris.truncate(keep);
-    p.tags.truncate(keep);
-    member.truncate(keep);
+    p.tris.truncate(kept);
+    p.tags.truncate(kept);
+    member.truncate(kept);
 }
