@@ -129,8 +129,7 @@ fn geom_fracture(
     key: &str,
 ) -> Result<Arc<Fracture>, SimError> {
     use shatter_geom::fracture as geom;
-    let method_kind = method;
-    let method = match method {
+    let geom_method = match method {
         MethodKind::Tetra => geom::Method::Tetra {
             random_vertices: params.random_vertices as usize,
             skip: params.skip as usize,
@@ -154,7 +153,7 @@ fn geom_fracture(
         },
     };
     let params = geom::FractureParams {
-        method,
+        method: geom_method,
         seed: params.seed,
     };
     let fracture = match input {
@@ -167,7 +166,7 @@ fn geom_fracture(
     })?;
     let mut fracture = fracture;
     // A grid's joints stay flat: masonry, whatever its material's roughness.
-    if !rough.is_off() && method_kind != MethodKind::Grid {
+    if !rough.is_off() && method != MethodKind::Grid {
         geom::roughen(&mut fracture, rough).map_err(|source| SimError::Fracture {
             key: format!("{key}.roughness"),
             source,

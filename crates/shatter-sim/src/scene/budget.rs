@@ -111,23 +111,14 @@ pub fn bodies_estimate(fragments: f64, model: BondModel) -> Estimate {
     }
 }
 
-/// Vertices and triangles of the mesh an object is cut from, and whether it is a box
-/// ([`shatter_geom::budget::is_box`]): a built-in shape's own, a mesh file's once loaded
-/// (a file that does not load is reported when the object is built; here it counts as
-/// empty).
-fn mesh_size(source: &FractureSource) -> (u64, u64, bool) {
-    let mesh = match source {
+/// The mesh an object is cut from: a built-in shape's own, a mesh file's once loaded (a
+/// file that does not load is reported when the object is built; here there is none).
+fn source_mesh(source: &FractureSource) -> Option<shatter_geom::TriMesh> {
+    match source {
         FractureSource::Prebuilt(_) => None,
         FractureSource::Shape { shape, .. } => Some(shape.mesh()),
         FractureSource::MeshFile { path, .. } => shatter_geom::io::load_mesh(path).ok(),
-    };
-    mesh.map_or((0, 0, false), |m| {
-        (
-            m.positions.len() as u64,
-            m.triangles.len() as u64,
-            shatter_geom::budget::is_box(&m),
-        )
-    })
+    }
 }
 
 /// The estimate of one object: its fracture and its bodies; `world_model` is the bond
@@ -148,9 +139,14 @@ pub fn object_estimate(key: &str, spec: &ObjectSpec, world_model: BondModel) -> 
         FractureSource::Shape { params, .. } | FractureSource::MeshFile { params, .. } => params,
     };
     let method = params.method.unwrap_or(spec.material.method);
-    let (vertices, triangles, boxed) = mesh_size(&spec.source);
+    let mesh = source_mesh(&spec.source);
+    let (vertices, triangles) = mesh.as_ref().map_or((0, 0), |m| {
+        (m.positions.len() as u64, m.triangles.len() as u64)
+    });
     let (what, fragments, fracture) = match method {
         MethodKind::Grid => {
+            // Only a grid asks whether the mesh is a box (bricks) or not (clipped cells).
+            let boxed = mesh.as_ref().is_some_and(shatter_geom::budget::is_box);
             let bricks: f64 = params.grid.iter().map(|&c| f64::from(c)).product();
             (
                 format!(

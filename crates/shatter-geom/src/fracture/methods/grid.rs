@@ -29,14 +29,13 @@ pub(crate) struct Grid {
 }
 
 impl Grid {
-    /// `cells` (each at least 1) over the bounds of `piece`.
+    /// `cells` over the bounds of `piece` (each count at least 1: the caller checks).
     pub(crate) fn over(piece: &Piece, cells: [u32; 3], voids: &[[u32; 6]]) -> Grid {
         let (lo, hi) = bounds(&piece.pos);
-        let n = cells.map(|c| c.max(1));
         Grid {
             lo,
-            cell: (hi - lo) / DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64),
-            n,
+            cell: (hi - lo) / DVec3::new(cells[0] as f64, cells[1] as f64, cells[2] as f64),
+            n: cells,
             voids: voids.to_vec(),
         }
     }
@@ -74,13 +73,8 @@ impl Grid {
     /// The cell holding `p` (clamped into the grid).
     fn cell_of(&self, p: DVec3) -> [u32; 3] {
         let t = (p - self.lo) / self.cell;
-        [t.x, t.y, t.z]
-            .iter()
-            .zip(self.n)
-            .map(|(&t, n)| (t.floor().max(0.0) as u32).min(n - 1))
-            .collect::<Vec<_>>()
-            .try_into()
-            .unwrap_or([0; 3])
+        let at = |axis: usize| (t[axis].floor().max(0.0) as u32).min(self.n[axis] - 1);
+        [at(0), at(1), at(2)]
     }
 
     /// The grid's inner planes `(point, normal)` in tag order: the `x` planes, then `y`,
@@ -201,7 +195,7 @@ fn brick(grid: &Grid, c: [u32; 3]) -> (Fragment, Vec<u64>) {
         tags.extend([tag; 2]);
     }
     let e = grid.cell;
-    let volume = e.x * e.y * e.z;
+    let volume = grid.cell_volume();
     let inertia = DMat3::from_diagonal(
         DVec3::new(
             e.y * e.y + e.z * e.z,
@@ -237,19 +231,19 @@ pub(crate) fn sliced(piece: &Piece, grid: &Grid, eps: f64) -> (Vec<Piece>, Vec<B
             grid.cell_of((lo + hi) / 2.0)
         })
         .collect();
-    let mut order: Vec<usize> = (0..parts.len())
-        .filter(|&i| !grid.is_void(cells[i]))
+    // The parts outside the voids, by cell (a stable sort: a cell's parts in cut order).
+    let mut kept: Vec<(usize, Piece)> = parts
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| !grid.is_void(cells[*i]))
         .collect();
-    order.sort_by_key(|&i| grid.index(cells[i]));
-    let mut number = vec![u32::MAX; parts.len()];
-    for (new, &old) in order.iter().enumerate() {
-        number[old] = new as u32;
-    }
-    let mut parts: Vec<Option<Piece>> = parts.into_iter().map(Some).collect();
-    let pieces = order
-        .iter()
-        .map(|&old| {
-            let mut p = parts[old].take().unwrap_or_default();
+    kept.sort_by_key(|(i, _)| grid.index(cells[*i]));
+    let mut number = vec![u32::MAX; cells.len()];
+    let pieces = kept
+        .into_iter()
+        .enumerate()
+        .map(|(new, (old, mut p))| {
+            number[old] = new as u32;
             let c = cells[old];
             for (t, tag) in p.tags.iter_mut().enumerate() {
                 if is_surface(*tag) {
