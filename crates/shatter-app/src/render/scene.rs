@@ -169,6 +169,8 @@ fn sync_pieces(
     mut stats: ResMut<RenderStats>,
 ) {
     let poses = bridge.poses();
+    // Whether the file materials in use changed (only then is the count recomputed).
+    let mut materials_changed = false;
     let mut alive = std::collections::HashSet::with_capacity(poses.len());
     for pose in poses {
         alive.insert(pose.key);
@@ -191,7 +193,10 @@ fn sync_pieces(
                 Some((index, m)) => pieces
                     .file_materials
                     .entry((pose.key.build, pose.key.object, *index))
-                    .or_insert_with(|| materials.add(file_material(m, &mut images)))
+                    .or_insert_with(|| {
+                        materials_changed = true;
+                        materials.add(file_material(m, &mut images))
+                    })
                     .clone(),
             };
             drawn.push((
@@ -221,9 +226,13 @@ fn sync_pieces(
     });
     // Materials of builds no piece shows any more.
     let live: std::collections::HashSet<u32> = pieces.entities.keys().map(|k| k.build).collect();
+    let before = pieces.file_materials.len();
     pieces
         .file_materials
         .retain(|(build, _, _), _| live.contains(build));
+    if !materials_changed && pieces.file_materials.len() == before {
+        return;
+    }
     let textured = pieces
         .file_materials
         .values()
