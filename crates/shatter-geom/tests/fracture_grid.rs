@@ -167,18 +167,9 @@ fn a_torus_grid_with_a_void_keeps_it_closed_and_its_walls_on_the_surface() {
 fn bricks_keep_the_models_uvs_on_the_surface() {
     let mut model = Model::from_mesh(shatter_geom::shapes::cube());
     // u = x + ½, v = y + ½ on every face of the cube (−½..½).
-    let uv: Vec<[[f32; 2]; 3]> = model
-        .mesh
-        .triangles
-        .iter()
-        .map(|t| {
-            t.map(|i| {
-                let p = model.mesh.positions[i as usize];
-                [(p.x + 0.5) as f32, (p.y + 0.5) as f32]
-            })
-        })
-        .collect();
-    model.corners.uv = Some(uv);
+    model.corners.uv = Some(corner_uvs(&model.mesh, |p| {
+        [(p.x + 0.5) as f32, (p.y + 0.5) as f32]
+    }));
     let f = fracture_model(&model, &grid([2, 2, 2], Vec::new())).unwrap();
     assert_eq!(f.fragments.len(), 8);
     assert_eq!(f.materials.last().unwrap().name, "interior");

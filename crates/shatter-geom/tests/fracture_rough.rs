@@ -318,18 +318,9 @@ fn off_and_glass_leave_the_fracture_byte_for_byte() {
 fn interior_uvs_stay_the_planar_projection_of_the_rough_faces() {
     let mesh = builtin::sphere(32, 16);
     let mut model = Model::from_mesh(mesh.clone());
-    let uv: Vec<[[f32; 2]; 3]> = model
-        .mesh
-        .triangles
-        .iter()
-        .map(|t| {
-            t.map(|i| {
-                let p = model.mesh.positions[i as usize];
-                [p.x as f32, p.z as f32]
-            })
-        })
-        .collect();
-    model.corners.uv = Some(uv);
+    model.corners.uv = Some(shapes::corner_uvs(&model.mesh, |p| {
+        [p.x as f32, p.z as f32]
+    }));
     let flat = fracture_model(&model, &params(30, 5)).unwrap();
     let mut rough = flat.clone();
     let r = stone_for(&mesh, 6);

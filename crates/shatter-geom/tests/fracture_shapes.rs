@@ -519,3 +519,11 @@ fn overlap_2d(n: DVec3, p: [DVec3; 3], q: [DVec3; 3]) -> bool {
     }
     true
 }
+
+/// Per-corner UVs of `mesh`, each corner's `uv(position)` (a planar projection).
+pub fn corner_uvs(mesh: &TriMesh, uv: impl Fn(DVec3) -> [f32; 2]) -> Vec<[[f32; 2]; 3]> {
+    mesh.triangles
+        .iter()
+        .map(|t| t.map(|i| uv(mesh.positions[i as usize])))
+        .collect()
+}
