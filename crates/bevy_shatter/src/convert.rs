@@ -1,9 +1,13 @@
 //! Conversions between Bevy's meshes and glam 0.32 and shatter's (glam 0.33).
 
+#[cfg(feature = "avian")]
 use bevy::asset::RenderAssetUsages;
+#[cfg(feature = "avian")]
 use bevy::mesh::{Indices, PrimitiveTopology, VertexAttributeValues};
 use bevy::prelude::*;
+#[cfg(feature = "avian")]
 use shatter_geom::mesh::TriMesh;
+#[cfg(feature = "avian")]
 use shatter_geom::model::{Corners, Material, Model};
 
 /// shatter's vector to Bevy's.
@@ -12,10 +16,12 @@ pub(crate) fn to_bevy(v: glam::Vec3) -> Vec3 {
 }
 
 /// Bevy's vector to shatter's.
+#[cfg(feature = "avian")]
 pub(crate) fn from_bevy(v: Vec3) -> glam::Vec3 {
     glam::Vec3::from_array(v.to_array())
 }
 
+#[cfg(feature = "avian")]
 /// A Bevy triangle list as a shatter model: the positions welded into one surface (Bevy's
 /// shapes repeat a corner per face), the mesh's `UV_0` and normals kept per triangle
 /// corner, one material. The fragments then carry the entity's texture mapping, so its
@@ -85,6 +91,7 @@ pub(crate) fn model(mesh: &Mesh) -> Option<Model> {
     Some(model)
 }
 
+#[cfg(feature = "avian")]
 /// The triangles of `mesh` where `keep` holds as a Bevy mesh (`None` if there are
 /// none): with the corners' UVs where the fragment has them, and their normals where
 /// `smooth` (the surface), else flat-shaded.

@@ -39,135 +39,156 @@
 //!
 //! A game can also fracture offline (`shatter fracture wall.obj --out wall.glb
 //! --anchor lowest`) and load the result: see [`FractureAsset`].
+//!
+//! A tool that wants shatter's own world instead (its stress solver, runtime cuts and
+//! damage, exactly as the CLI runs them), stepped and drawn by Bevy, uses [`world`]: the
+//! sandbox is built on it. That part needs no physics engine; the game part above is the
+//! `avian` feature (on by default).
 
+#![cfg_attr(test, allow(clippy::unwrap_used))]
+
+#[cfg(feature = "avian")]
 pub mod asset;
+#[cfg(feature = "avian")]
 mod bonds;
+#[cfg(feature = "avian")]
 pub mod breakable;
+#[cfg(feature = "avian")]
 mod components;
 mod convert;
+#[cfg(feature = "avian")]
 mod spawn;
+pub mod world;
 
-use bevy::prelude::*;
+#[cfg(feature = "avian")]
+pub use game::*;
 
-pub use asset::{FractureAsset, FractureAssetError, FractureAssetLoader};
-pub use breakable::{Breakable, BreakableError};
-pub use components::{Fragment, ShatterBody, ShatterObject};
+/// The game plugin over avian3d (the `avian` feature).
+#[cfg(feature = "avian")]
+mod game {
+    use bevy::prelude::*;
 
-/// The plugin: fractures [`Breakable`] entities and breaks their bonds.
-///
-/// Its systems run in `FixedUpdate`, in [`ShatterSystems`]; they read the contacts of the
-/// last physics step (avian runs in `FixedPostUpdate` by default).
-#[derive(Debug, Clone)]
-pub struct ShatterPlugin {
-    /// The material for the cut (interior) faces of fragments; `None`: a
-    /// `StandardMaterial` of [`shatter_geom::io::INTERIOR_COLOR`] made by the plugin (the
-    /// colour shatter's files give cut faces).
-    pub interior_material: Option<Handle<StandardMaterial>>,
-    /// Scales every contact force before it loads the bonds (1: as measured).
-    pub contact_scale: f32,
-    /// Fragments whose speed exceeds this (m/s) or whose state is not finite are removed
-    /// (a `Diverged` outcome is logged).
-    pub max_speed: f32,
-}
+    pub use crate::asset::{FractureAsset, FractureAssetError, FractureAssetLoader};
+    pub use crate::breakable::{Breakable, BreakableError};
+    pub use crate::components::{Fragment, ShatterBody, ShatterObject};
+    use crate::{asset, bonds, breakable, spawn};
 
-impl Default for ShatterPlugin {
-    fn default() -> Self {
-        ShatterPlugin {
-            interior_material: None,
-            contact_scale: 1.0,
-            max_speed: 500.0,
+    /// The plugin: fractures [`Breakable`] entities and breaks their bonds.
+    ///
+    /// Its systems run in `FixedUpdate`, in [`ShatterSystems`]; they read the contacts of the
+    /// last physics step (avian runs in `FixedPostUpdate` by default).
+    #[derive(Debug, Clone)]
+    pub struct ShatterPlugin {
+        /// The material for the cut (interior) faces of fragments; `None`: a
+        /// `StandardMaterial` of [`shatter_geom::io::INTERIOR_COLOR`] made by the plugin (the
+        /// colour shatter's files give cut faces).
+        pub interior_material: Option<Handle<StandardMaterial>>,
+        /// Scales every contact force before it loads the bonds (1: as measured).
+        pub contact_scale: f32,
+        /// Fragments whose speed exceeds this (m/s) or whose state is not finite are removed
+        /// (a `Diverged` outcome is logged).
+        pub max_speed: f32,
+    }
+
+    impl Default for ShatterPlugin {
+        fn default() -> Self {
+            ShatterPlugin {
+                interior_material: None,
+                contact_scale: 1.0,
+                max_speed: 500.0,
+            }
         }
     }
-}
 
-/// The plugin's settings, as a resource (a copy of [`ShatterPlugin`]'s fields).
-#[derive(Resource, Debug, Clone)]
-pub struct ShatterSettings {
-    /// See [`ShatterPlugin::interior_material`] (filled in at startup).
-    pub interior_material: Option<Handle<StandardMaterial>>,
-    /// See [`ShatterPlugin::contact_scale`].
-    pub contact_scale: f32,
-    /// See [`ShatterPlugin::max_speed`].
-    pub max_speed: f32,
-}
+    /// The plugin's settings, as a resource (a copy of [`ShatterPlugin`]'s fields).
+    #[derive(Resource, Debug, Clone)]
+    pub struct ShatterSettings {
+        /// See [`ShatterPlugin::interior_material`] (filled in at startup).
+        pub interior_material: Option<Handle<StandardMaterial>>,
+        /// See [`ShatterPlugin::contact_scale`].
+        pub contact_scale: f32,
+        /// See [`ShatterPlugin::max_speed`].
+        pub max_speed: f32,
+    }
 
-/// The plugin's system sets in `FixedUpdate`, in this order.
-#[derive(SystemSet, Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum ShatterSystems {
-    /// Starts fracture tasks for new [`Breakable`]s and spawns the fragments of finished
-    /// ones.
-    Fracture,
-    /// Loads bonds from the last step's contacts, breaks them and splits bodies.
-    Break,
-}
+    /// The plugin's system sets in `FixedUpdate`, in this order.
+    #[derive(SystemSet, Debug, Clone, Copy, PartialEq, Eq, Hash)]
+    pub enum ShatterSystems {
+        /// Starts fracture tasks for new [`Breakable`]s and spawns the fragments of finished
+        /// ones.
+        Fracture,
+        /// Loads bonds from the last step's contacts, breaks them and splits bodies.
+        Break,
+    }
 
-/// A [`Breakable`] entity was fractured and replaced by fragments.
-#[derive(Message, Debug, Clone, PartialEq)]
-pub struct Fractured {
-    /// The entity (it stays, as the object's record: [`ShatterObject`]).
-    pub object: Entity,
-    /// Number of fragments.
-    pub fragments: usize,
-    /// Number of bonds.
-    pub bonds: usize,
-}
+    /// A [`Breakable`] entity was fractured and replaced by fragments.
+    #[derive(Message, Debug, Clone, PartialEq)]
+    pub struct Fractured {
+        /// The entity (it stays, as the object's record: [`ShatterObject`]).
+        pub object: Entity,
+        /// Number of fragments.
+        pub fragments: usize,
+        /// Number of bonds.
+        pub bonds: usize,
+    }
 
-/// A bond of an object broke.
-#[derive(Message, Debug, Clone, PartialEq)]
-pub struct BondBroken {
-    /// The object.
-    pub object: Entity,
-    /// What broke (bond index, fragments, cause, load).
-    pub bond: shatter_sim::breaking::BondBroken,
-}
+    /// A bond of an object broke.
+    #[derive(Message, Debug, Clone, PartialEq)]
+    pub struct BondBroken {
+        /// The object.
+        pub object: Entity,
+        /// What broke (bond index, fragments, cause, load).
+        pub bond: shatter_sim::breaking::BondBroken,
+    }
 
-/// A body of an object split into islands of intact bonds.
-#[derive(Message, Debug, Clone, PartialEq)]
-pub struct Split {
-    /// The object.
-    pub object: Entity,
-    /// The island bodies: the first is the old body, the others are new.
-    pub bodies: Vec<Entity>,
-    /// Each island's fragments.
-    pub parts: Vec<Vec<u32>>,
-}
+    /// A body of an object split into islands of intact bonds.
+    #[derive(Message, Debug, Clone, PartialEq)]
+    pub struct Split {
+        /// The object.
+        pub object: Entity,
+        /// The island bodies: the first is the old body, the others are new.
+        pub bodies: Vec<Entity>,
+        /// Each island's fragments.
+        pub parts: Vec<Vec<u32>>,
+    }
 
-/// A [`Breakable`] could not be fractured (bad mesh, bad parameters).
-#[derive(Message, Debug, Clone, PartialEq)]
-pub struct FractureFailed {
-    /// The entity (it keeps its mesh; its [`Breakable`] is removed).
-    pub object: Entity,
-    /// Why.
-    pub error: BreakableError,
-}
+    /// A [`Breakable`] could not be fractured (bad mesh, bad parameters).
+    #[derive(Message, Debug, Clone, PartialEq)]
+    pub struct FractureFailed {
+        /// The entity (it keeps its mesh; its [`Breakable`] is removed).
+        pub object: Entity,
+        /// Why.
+        pub error: BreakableError,
+    }
 
-impl Plugin for ShatterPlugin {
-    fn build(&self, app: &mut App) {
-        app.insert_resource(ShatterSettings {
-            interior_material: self.interior_material.clone(),
-            contact_scale: self.contact_scale,
-            max_speed: self.max_speed,
-        })
-        .init_asset::<asset::FractureAsset>()
-        .init_asset_loader::<asset::FractureAssetLoader>()
-        .add_message::<Fractured>()
-        .add_message::<BondBroken>()
-        .add_message::<Split>()
-        .add_message::<FractureFailed>()
-        .configure_sets(
-            FixedUpdate,
-            (ShatterSystems::Fracture, ShatterSystems::Break).chain(),
-        )
-        .add_systems(
-            FixedUpdate,
-            (
-                (breakable::start_fractures, spawn::finish_fractures)
-                    .chain()
-                    .in_set(ShatterSystems::Fracture),
-                (bonds::break_bonds, bonds::guard)
-                    .chain()
-                    .in_set(ShatterSystems::Break),
-            ),
-        );
+    impl Plugin for ShatterPlugin {
+        fn build(&self, app: &mut App) {
+            app.insert_resource(ShatterSettings {
+                interior_material: self.interior_material.clone(),
+                contact_scale: self.contact_scale,
+                max_speed: self.max_speed,
+            })
+            .init_asset::<asset::FractureAsset>()
+            .init_asset_loader::<asset::FractureAssetLoader>()
+            .add_message::<Fractured>()
+            .add_message::<BondBroken>()
+            .add_message::<Split>()
+            .add_message::<FractureFailed>()
+            .configure_sets(
+                FixedUpdate,
+                (ShatterSystems::Fracture, ShatterSystems::Break).chain(),
+            )
+            .add_systems(
+                FixedUpdate,
+                (
+                    (breakable::start_fractures, spawn::finish_fractures)
+                        .chain()
+                        .in_set(ShatterSystems::Fracture),
+                    (bonds::break_bonds, bonds::guard)
+                        .chain()
+                        .in_set(ShatterSystems::Break),
+                ),
+            );
+        }
     }
 }

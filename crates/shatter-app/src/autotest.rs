@@ -17,9 +17,10 @@ use bevy::render::view::screenshot::{Screenshot, save_to_disk};
 use serde_json::{Value, json};
 
 use crate::camera::OrbitCamera;
+use crate::commands::ObjectId;
 use crate::commands::SimCommand;
 use crate::input::SyntheticClick;
-use crate::sim_bridge::{SimBridge, SimStats, to_bevy};
+use crate::sim_bridge::{ShatterWorld, SimStats, to_bevy};
 use crate::ui::forms::ShapeKind;
 use crate::ui::{FrameRate, PendingCommands, UiState};
 
@@ -72,7 +73,7 @@ fn run_script(
     mut ui_state: ResMut<UiState>,
     mut pending: ResMut<PendingCommands>,
     mut click: ResMut<SyntheticClick>,
-    bridge: Res<SimBridge>,
+    bridge: Res<ShatterWorld>,
     rate: Res<FrameRate>,
     camera: Single<(&Camera, &GlobalTransform), With<OrbitCamera>>,
     mut exit: MessageWriter<AppExit>,
@@ -146,8 +147,9 @@ fn run_script(
         7 => {
             test.record.insert("before_shot".into(), stats_json(&stats));
             let target = bridge
-                .object_spec(0)
-                .map(|s| to_bevy(s.position.as_vec3()))
+                .world()
+                .object_spec(ObjectId(0))
+                .map(|s| to_bevy(s.position))
                 .unwrap_or(Vec3::new(0.0, 2.0, 0.0));
             click.0 = screen_of(target);
             true
@@ -166,8 +168,9 @@ fn run_script(
             ui_state.force_form.power = "150".into();
             ui_state.update_force();
             let target = bridge
-                .object_spec(3)
-                .map(|s| to_bevy(s.position.as_vec3()))
+                .world()
+                .object_spec(ObjectId(3))
+                .map(|s| to_bevy(s.position))
                 .unwrap_or(Vec3::new(-3.0, 0.5, 1.5));
             click.0 = screen_of(target);
             test.record

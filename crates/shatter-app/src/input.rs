@@ -7,7 +7,7 @@ use bevy_egui::input::EguiWantsInput;
 
 use crate::camera::OrbitCamera;
 use crate::commands::SimCommand;
-use crate::sim_bridge::{SimBridge, to_sim};
+use crate::sim_bridge::{ShatterWorld, to_sim};
 use crate::ui::{ClickOutcome, PendingCommands, UiState};
 
 /// A click to perform as if the user had made it (used by the autotest), in window
@@ -33,7 +33,7 @@ fn handle_click(
     camera: Single<(&Camera, &GlobalTransform), With<OrbitCamera>>,
     egui_input: Option<Res<EguiWantsInput>>,
     mut synthetic: ResMut<SyntheticClick>,
-    bridge: Res<SimBridge>,
+    bridge: Res<ShatterWorld>,
     mut ui_state: ResMut<UiState>,
     mut pending: ResMut<PendingCommands>,
 ) {
@@ -56,12 +56,12 @@ fn handle_click(
         return;
     };
     let (origin, dir) = (to_sim(ray.origin), to_sim(*ray.direction));
-    let hit = bridge.ray_cast(origin, dir);
+    let hit = bridge.world().ray_cast(origin, dir);
     match ui_state.click(origin, dir, hit) {
         ClickOutcome::Command(cmd) => pending.0.push(cmd),
         ClickOutcome::Edit(id) => {
-            if let Some(spec) = bridge.object_spec(id) {
-                ui_state.edit_object(id, &spec);
+            if let Some(spec) = bridge.world().object_spec(id) {
+                ui_state.edit_object(id, spec);
             }
         }
         ClickOutcome::Nothing => {}

@@ -1,9 +1,12 @@
 //! shatter's interactive sandbox: the thesis's breakable-object system in Bevy + egui.
 //!
-//! One plugin per concern — [`camera::CameraPlugin`], [`render::SceneRenderPlugin`],
-//! [`ui::UiPlugin`], [`input::ClickPlugin`], [`sim_plugin::SimPlugin`] and
-//! [`autotest::AutotestPlugin`] — gathered by [`ShatterAppPlugin`]. The simulation is
-//! reached only through [`sim_bridge::SimBridge`]; the panels only produce typed
+//! The sandbox is panels, a camera, an autotest and a web page over bevy_shatter: the
+//! simulation is its [`ShatterWorld`](bevy_shatter::world::ShatterWorld), stepped and
+//! drawn by its [`ShatterWorldPlugin`](bevy_shatter::world::ShatterWorldPlugin). One
+//! plugin per concern — [`camera::CameraPlugin`], [`render::SceneRenderPlugin`] (lights
+//! and ground), [`ui::UiPlugin`], [`input::ClickPlugin`], [`sim_plugin::SimPlugin`] and
+//! [`autotest::AutotestPlugin`] — gathered by [`ShatterAppPlugin`]. The world is changed
+//! only through [`sim_bridge::SandboxWorld`]; the panels only produce typed
 //! [`commands::SimCommand`]s, validated by pure functions in [`ui::forms`]. Errors are
 //! typed ([`ui::fields::FieldError`], [`ui::forms::FormError`], [`error::AppError`]) and
 //! become text only where they are shown: the panels, the log and the autotest's record.
@@ -30,7 +33,6 @@ pub mod render;
 pub mod scene_store;
 pub mod sim_bridge;
 pub mod sim_plugin;
-pub mod spec_convert;
 pub mod state_log;
 pub mod ui;
 

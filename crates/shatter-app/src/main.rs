@@ -13,7 +13,7 @@ use std::process::ExitCode;
 use bevy::prelude::*;
 use bevy::window::{PresentMode, WindowResolution};
 use shatter_app::ShatterAppPlugin;
-use shatter_app::sim_bridge::SimBridge;
+use shatter_app::sim_bridge::{SandboxWorld, ShatterWorld};
 
 const USAGE: &str = "usage: shatter-app [--autotest DIR] [--scene NAME]";
 
@@ -24,25 +24,11 @@ const USAGE: &str = "usage: shatter-app [--autotest DIR] [--scene NAME]";
 #[cfg(target_arch = "wasm32")]
 #[wasm_bindgen::prelude::wasm_bindgen]
 pub fn add_mesh(name: String, bytes: Vec<u8>) -> String {
-    let files = &**shatter_app::picked_files::picked_files();
-    let Some(format) = shatter_geom::io::MeshFormat::from_path(&name) else {
-        const COMPANIONS: [&str; 5] = ["bin", "mtl", "png", "jpg", "jpeg"];
-        let ext = std::path::Path::new(&name)
-            .extension()
-            .map(|e| e.to_string_lossy().to_ascii_lowercase());
-        if ext.is_some_and(|e| COMPANIONS.contains(&e.as_str())) {
-            files.insert(&name, bytes);
-            return String::new();
-        }
-        return format!(
-            "'{name}': expected an .obj, .stl, .gltf or .glb file (or a .bin, .mtl, .png or .jpg it uses)"
-        );
-    };
-    if let Err(e) = shatter_geom::io::parse_model_with(&bytes, format, &name, files) {
-        return e.to_string();
+    let files = shatter_app::picked_files::picked_files();
+    match bevy_shatter::world::pick_file(files, &name, bytes) {
+        Ok(()) => String::new(),
+        Err(e) => e.to_string(),
     }
-    files.insert(&name, bytes);
-    String::new()
 }
 
 /// Why the command line is refused; its `Display` is what is printed.
@@ -140,10 +126,10 @@ fn main() -> ExitCode {
         ..default()
     }));
     if let Some(name) = scene.or_else(page_scene) {
-        let mut bridge = SimBridge::default();
-        match bridge.load_example(&name) {
+        let mut world = ShatterWorld::sandbox(shatter_sim::World::new(Default::default()));
+        match world.load_example(&name) {
             Ok(()) => {
-                app.insert_resource(bridge);
+                app.insert_resource(world);
             }
             Err(e) => {
                 // A bad name on the command line is refused; in the page, the default

@@ -1,32 +1,42 @@
-//! Applies queued commands to the simulation and advances it every frame.
+//! Applies queued commands to the simulation before bevy_shatter steps it, and shows what
+//! went wrong in a step in the status line.
 
 use bevy::prelude::*;
+use bevy_shatter::world::{ShatterWorld, ShatterWorldPlugin, ShatterWorldSystems, WorldEvent};
+use shatter_sim::SimEvent;
 
-use crate::sim_bridge::SimBridge;
+use crate::sim_bridge::SandboxWorld;
 use crate::ui::{PendingCommands, UiState};
 
-/// Owns the [`SimBridge`] resource and steps it.
+/// Adds bevy_shatter's [`ShatterWorldPlugin`] (which steps and draws the world), opening
+/// the default scene unless a world is already there, and feeds it the panels' commands.
 #[derive(Debug, Default)]
 pub struct SimPlugin;
 
 impl Plugin for SimPlugin {
     fn build(&self, app: &mut App) {
-        if !app.world().contains_resource::<SimBridge>() {
-            app.insert_resource(SimBridge::default_scene());
+        if !app.world().contains_resource::<ShatterWorld>() {
+            app.insert_resource(ShatterWorld::default_scene());
         }
-        app.add_systems(Update, (apply_commands, advance).chain());
+        app.add_plugins(ShatterWorldPlugin).add_systems(
+            Update,
+            (
+                apply_commands.before(ShatterWorldSystems::Step),
+                report_events.after(ShatterWorldSystems::Step),
+            ),
+        );
     }
 }
 
 /// Apply every queued command; report errors and new ids to the UI.
 pub fn apply_commands(
-    mut bridge: ResMut<SimBridge>,
+    mut world: ResMut<ShatterWorld>,
     mut pending: ResMut<PendingCommands>,
     mut ui_state: ResMut<UiState>,
 ) {
     for cmd in pending.0.drain(..) {
         let what = cmd.clone();
-        match bridge.apply(cmd) {
+        match world.apply(cmd) {
             Ok(Some(id)) => ui_state.object_added(id),
             Ok(None) => {}
             Err(e) => {
@@ -40,8 +50,31 @@ pub fn apply_commands(
     }
 }
 
-fn advance(mut bridge: ResMut<SimBridge>, time: Res<Time>, mut ui_state: ResMut<UiState>) {
-    if let Some(last) = bridge.advance(time.delta_secs_f64()).pop() {
+/// The status line's message for a step's event, if it is one the user should see
+/// (bodies removed, a runtime cut that failed).
+pub fn status_message(event: &SimEvent) -> Option<String> {
+    match event {
+        SimEvent::Diverged { object, reason } => Some(match object {
+            Some(o) => format!("object {o}: a body diverged and was removed ({reason})"),
+            None => format!("a projectile diverged and was removed ({reason})"),
+        }),
+        SimEvent::FractureFailed {
+            object,
+            fragment,
+            reason,
+        } => Some(format!(
+            "object {object}: the runtime cut of fragment {fragment} failed ({reason}); \
+             it stays whole"
+        )),
+        SimEvent::Expired(_)
+        | SimEvent::BondsBroken { .. }
+        | SimEvent::Split { .. }
+        | SimEvent::Fractured { .. } => None,
+    }
+}
+
+fn report_events(mut events: MessageReader<WorldEvent>, mut ui_state: ResMut<UiState>) {
+    if let Some(last) = events.read().filter_map(|e| status_message(&e.0)).last() {
         warn!("{last}");
         ui_state.status = last;
     }

@@ -5,8 +5,8 @@
 use bevy::prelude::*;
 use serde_json::json;
 
-use crate::render::scene::RenderStats;
-use crate::sim_bridge::SimBridge;
+use crate::render::RenderStats;
+use crate::sim_bridge::ShatterWorld;
 use crate::ui::FrameRate;
 
 /// Logs `SHATTER_STATE {json}` every `period_secs` seconds of wall-clock time.
@@ -37,13 +37,13 @@ impl Plugin for StateLogPlugin {
 
 /// The line for a state and a frame count: every [`SimStats`](crate::sim_bridge::SimStats)
 /// field, plus `frames`.
-pub fn state_line(bridge: &SimBridge, frames: u64) -> String {
+pub fn state_line(bridge: &ShatterWorld, frames: u64) -> String {
     state_line_with(bridge, frames, 0)
 }
 
 /// [`state_line`], plus `textured_materials`: the drawn file materials that carry a
 /// texture ([`RenderStats`]), so the web page's test sees a textured model drawn.
-pub fn state_line_with(bridge: &SimBridge, frames: u64, textured_materials: usize) -> String {
+pub fn state_line_with(bridge: &ShatterWorld, frames: u64, textured_materials: usize) -> String {
     let mut value = serde_json::to_value(bridge.stats()).unwrap_or_else(|_| json!({}));
     if let Some(map) = value.as_object_mut() {
         map.insert("frames".to_owned(), json!(frames));
@@ -55,7 +55,7 @@ pub fn state_line_with(bridge: &SimBridge, frames: u64, textured_materials: usiz
 fn log_state(
     time: Res<Time<Real>>,
     mut timer: ResMut<StateLogTimer>,
-    bridge: Res<SimBridge>,
+    bridge: Res<ShatterWorld>,
     rate: Res<FrameRate>,
     render: Option<Res<RenderStats>>,
 ) {

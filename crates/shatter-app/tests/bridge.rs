@@ -2,51 +2,66 @@
 //! reach the real `shatter-sim` world and have the effects the user expects.
 #![allow(clippy::unwrap_used)]
 
-use glam::{DVec3, Vec3};
+use glam::Vec3;
 use shatter_app::commands::{
-    BondModel, MaterialPreset, MethodKind, ObjectSpec, Pattern, ProjectileSpec, Shape, ShapeChoice,
-    SimCommand,
+    BondModel, FractureSource, MaterialPreset, MethodKind, ObjectId, ObjectSpec, Pattern,
+    ProjectileSpec, Shape, SimCommand,
 };
-use shatter_app::sim_bridge::{PROJECTILE_BIT, SimBridge, check_custom_mesh};
+use shatter_app::sim_bridge::{
+    PieceOwner, SandboxWorld, ShatterWorld, check_custom_mesh, load_projectile,
+};
+use shatter_app::ui::forms::AddObjectForm;
+use shatter_sim::FractureParams;
 
-fn steps(b: &mut SimBridge, n: usize) {
+fn steps(b: &mut ShatterWorld, n: usize) {
     for _ in 0..n {
         assert!(b.step_once(), "the world should be running");
     }
 }
 
-fn cube_spec(position: DVec3) -> ObjectSpec {
-    ObjectSpec {
-        shape: ShapeChoice::Builtin(Shape::Cube),
-        method: MethodKind::Voronoi,
-        pattern: Pattern::Uniform,
-        random_vertices: 12,
-        skip: 0,
-        center: false,
-        break_force: 500.0,
-        lifetime: None,
-        color: [0.2, 0.5, 0.8],
-        material: MaterialPreset::Stone,
-        position,
-        scale: DVec3::ONE,
+/// The params of a shape cut into `pieces` uniform Voronoi cells.
+fn voronoi(pieces: u32) -> FractureParams {
+    FractureParams {
+        method: Some(MethodKind::Voronoi),
+        pattern: Some(Pattern::Uniform),
+        pieces,
+        ..FractureParams::default()
     }
 }
 
-fn fire_at_wall(b: &mut SimBridge, speed: f64) {
-    b.apply(SimCommand::Fire {
-        spec: ProjectileSpec {
-            speed,
-            ..ProjectileSpec::default()
-        },
+fn cube_spec(position: Vec3) -> ObjectSpec {
+    ObjectSpec {
+        break_force: Some(500.0),
+        color: [0.2, 0.5, 0.8],
+        material: MaterialPreset::Stone.material(),
+        position,
+        ..ObjectSpec::new(
+            "cube",
+            FractureSource::Shape {
+                shape: Shape::Cube,
+                params: voronoi(12),
+            },
+        )
+    }
+}
+
+fn empty_world() -> ShatterWorld {
+    ShatterWorld::sandbox(shatter_sim::World::new(Default::default()))
+}
+
+fn fire_at_wall(b: &mut ShatterWorld, speed: f32) {
+    b.apply(SimCommand::Fire(ProjectileSpec {
+        speed,
         from: Vec3::new(0.3, 1.2, 6.0),
         to: Vec3::new(0.3, 1.2, 0.0),
-    })
+        ..ProjectileSpec::default()
+    }))
     .unwrap();
 }
 
 #[test]
 fn default_scene_is_the_bundled_file_with_every_object() {
-    let b = SimBridge::default_scene();
+    let b = ShatterWorld::default_scene();
     let s = b.stats();
     // Wall 16×10×2 bricks, bird 40 radial cells, glass pane 30 radial cells (the tiny
     // cells at the impact point merge into neighbours), crate 4×4×4.
@@ -76,14 +91,14 @@ fn default_scene_is_the_bundled_file_with_every_object() {
 
 #[test]
 fn a_fast_shot_breaks_the_wall_and_a_slow_one_does_not() {
-    let mut slow = SimBridge::default_scene();
+    let mut slow = ShatterWorld::default_scene();
     slow.apply(SimCommand::Start).unwrap();
     steps(&mut slow, 10);
     fire_at_wall(&mut slow, 2.0);
     steps(&mut slow, 120);
     assert_eq!(slow.stats().bonds_broken, 0, "{:?}", slow.stats());
 
-    let mut fast = SimBridge::default_scene();
+    let mut fast = ShatterWorld::default_scene();
     fast.apply(SimCommand::Start).unwrap();
     steps(&mut fast, 10);
     fire_at_wall(&mut fast, 40.0);
@@ -91,7 +106,7 @@ fn a_fast_shot_breaks_the_wall_and_a_slow_one_does_not() {
     assert!(
         fast.poses()
             .iter()
-            .any(|p| p.key.object & PROJECTILE_BIT != 0)
+            .any(|p| matches!(p.key.owner, PieceOwner::Projectile(_)))
     );
     steps(&mut fast, 30);
     let s = fast.stats();
@@ -101,7 +116,7 @@ fn a_fast_shot_breaks_the_wall_and_a_slow_one_does_not() {
 
 #[test]
 fn reset_puts_everything_back_and_replaces_the_meshes() {
-    let mut b = SimBridge::default_scene();
+    let mut b = ShatterWorld::default_scene();
     let initial: Vec<_> = b
         .poses()
         .iter()
@@ -130,7 +145,7 @@ fn reset_puts_everything_back_and_replaces_the_meshes() {
 
 #[test]
 fn pause_holds_time_and_resume_continues() {
-    let mut b = SimBridge::default_scene();
+    let mut b = ShatterWorld::default_scene();
     b.apply(SimCommand::Start).unwrap();
     steps(&mut b, 5);
     b.apply(SimCommand::TogglePause).unwrap();
@@ -146,7 +161,7 @@ fn pause_holds_time_and_resume_continues() {
 
 #[test]
 fn advance_runs_fixed_steps_and_never_more_than_the_cap_per_frame() {
-    let mut b = SimBridge::default_scene();
+    let mut b = ShatterWorld::default_scene();
     b.apply(SimCommand::Start).unwrap();
     b.advance(0.05);
     // 1/60 s steps: three fit in 0.05 s.
@@ -160,27 +175,40 @@ fn advance_runs_fixed_steps_and_never_more_than_the_cap_per_frame() {
 
 #[test]
 fn add_edit_delete_and_clean_change_the_world() {
-    let mut b = SimBridge::default_scene();
+    let mut b = ShatterWorld::default_scene();
     let before = b.stats().fragments;
     let id = b
-        .apply(SimCommand::AddObject(cube_spec(DVec3::new(5.0, 0.5, 0.0))))
+        .apply(SimCommand::AddObject(Box::new(cube_spec(Vec3::new(
+            5.0, 0.5, 0.0,
+        )))))
         .unwrap()
         .unwrap();
     let added = b.stats().fragments - before;
     assert!(added >= 12, "12 Voronoi cells: {added}");
-    let spec = b.object_spec(id).unwrap();
-    assert_eq!(spec.random_vertices, 12);
-    assert_eq!(spec.position, DVec3::new(5.0, 0.5, 0.0));
-    assert_eq!(spec.material, MaterialPreset::Stone);
+    let spec = b.world().object_spec(id).unwrap().clone();
+    assert_eq!(spec.source.params().unwrap().pieces, 12);
+    assert_eq!(spec.position, Vec3::new(5.0, 0.5, 0.0));
+    assert_eq!(
+        MaterialPreset::of(&spec.material),
+        Some(MaterialPreset::Stone)
+    );
 
     // Edit: 30 tetra random points instead.
     let edited = ObjectSpec {
-        method: MethodKind::Tetra,
-        random_vertices: 30,
+        source: FractureSource::Shape {
+            shape: Shape::Cube,
+            params: FractureParams {
+                method: Some(MethodKind::Tetra),
+                random_vertices: 30,
+                ..voronoi(12)
+            },
+        },
         ..spec
     };
-    b.apply(SimCommand::EditObject(id, edited)).unwrap();
-    assert_eq!(b.object_spec(id).unwrap().method, MethodKind::Tetra);
+    b.apply(SimCommand::EditObject(id, Box::new(edited)))
+        .unwrap();
+    let params = b.world().object_spec(id).unwrap().source.params().cloned();
+    assert_eq!(params.unwrap().method, Some(MethodKind::Tetra));
     assert_ne!(b.stats().fragments - before, added);
 
     b.apply(SimCommand::DeleteObject(id)).unwrap();
@@ -194,45 +222,50 @@ fn add_edit_delete_and_clean_change_the_world() {
 
 #[test]
 fn editing_a_scene_object_keeps_what_the_panels_do_not_show() {
-    let mut b = SimBridge::default_scene();
-    // Object 0 is the anchored brick wall.
-    let wall = b.object_spec(0).unwrap();
-    assert_eq!(wall.method, MethodKind::Grid);
-    assert_eq!(wall.random_vertices, 16);
+    let mut b = ShatterWorld::default_scene();
+    // Object 0 is the anchored brick wall, edited through the panels as a user would.
+    let wall = b.world().object_spec(ObjectId(0)).unwrap().clone();
+    let (mut form, transform) = AddObjectForm::from_spec(&wall);
+    assert_eq!(form.method, MethodKind::Grid);
+    assert_eq!(form.random_vertices, "16");
+    form.color = ["1".into(), "0".into(), "0".into()];
+    let edited = form.validate(&transform, &|_| Ok(()), Some(&wall)).unwrap();
     let bricks = b.stats().fragments;
-    b.apply(SimCommand::EditObject(
-        0,
-        ObjectSpec {
-            color: [1.0, 0.0, 0.0],
-            ..wall
-        },
-    ))
-    .unwrap();
+    b.apply(SimCommand::EditObject(ObjectId(0), Box::new(edited)))
+        .unwrap();
     assert_eq!(b.stats().fragments, bricks, "same grid");
-    let sim = b.world().object_spec(shatter_sim::ObjectId(0)).unwrap();
+    let sim = b.world().object_spec(ObjectId(0)).unwrap();
     assert!(sim.anchored, "still anchored");
     assert_eq!(sim.color, [1.0, 0.0, 0.0]);
 }
 
 #[test]
 fn a_refused_object_changes_nothing_and_says_why() {
-    let mut b = SimBridge::default_scene();
+    let mut b = ShatterWorld::default_scene();
     let before = b.stats();
     // A mesh file that does not exist: the message names it.
     let err = b
-        .apply(SimCommand::AddObject(ObjectSpec {
-            shape: ShapeChoice::Custom("no/such/mesh.obj".into()),
-            ..cube_spec(DVec3::ZERO)
-        }))
+        .apply(SimCommand::AddObject(Box::new(ObjectSpec {
+            source: FractureSource::MeshFile {
+                path: "no/such/mesh.obj".into(),
+                params: voronoi(12),
+            },
+            ..cube_spec(Vec3::ZERO)
+        })))
         .unwrap_err();
     assert!(err.to_string().contains("no/such/mesh.obj"), "{err}");
     assert_eq!(b.stats(), before);
     // A grid of the bird is its cells clipped to it, not a refusal.
-    let added = b.apply(SimCommand::AddObject(ObjectSpec {
-        shape: ShapeChoice::Builtin(Shape::Bird),
-        method: MethodKind::Grid,
-        ..cube_spec(DVec3::new(0.0, 3.0, 0.0))
-    }));
+    let added = b.apply(SimCommand::AddObject(Box::new(ObjectSpec {
+        source: FractureSource::Shape {
+            shape: Shape::Bird,
+            params: FractureParams {
+                method: Some(MethodKind::Grid),
+                ..voronoi(12)
+            },
+        },
+        ..cube_spec(Vec3::new(0.0, 3.0, 0.0))
+    })));
     assert!(matches!(added, Ok(Some(_))), "{added:?}");
     assert!(b.stats().fragments > before.fragments);
     // An explosion with a negative radius is refused.
@@ -250,7 +283,7 @@ fn a_refused_object_changes_nothing_and_says_why() {
 
 #[test]
 fn an_explosion_breaks_bonds_near_it() {
-    let mut b = SimBridge::default_scene();
+    let mut b = ShatterWorld::default_scene();
     b.apply(SimCommand::Start).unwrap();
     steps(&mut b, 5);
     // Next to the glass pane at (3, 0.02, 2).
@@ -266,17 +299,16 @@ fn an_explosion_breaks_bonds_near_it() {
 
 #[test]
 fn bond_model_choice_applies_to_new_objects() {
-    let mut b = SimBridge::default_scene();
+    let mut b = ShatterWorld::default_scene();
     b.apply(SimCommand::SetBondModel(BondModel::Joints))
         .unwrap();
     let id = b
-        .apply(SimCommand::AddObject(cube_spec(DVec3::new(5.0, 0.5, 0.0))))
+        .apply(SimCommand::AddObject(Box::new(cube_spec(Vec3::new(
+            5.0, 0.5, 0.0,
+        )))))
         .unwrap()
         .unwrap();
-    let model = b
-        .world()
-        .object_bond_model(shatter_sim::ObjectId(id as u32))
-        .unwrap();
+    let model = b.world().object_bond_model(id).unwrap();
     assert_eq!(model, shatter_sim::BondModel::Joints);
 }
 
@@ -284,13 +316,15 @@ fn bond_model_choice_applies_to_new_objects() {
 fn save_and_load_round_trip_and_a_bad_file_keeps_the_scene() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("scene.toml");
-    let mut b = SimBridge::default_scene();
-    b.apply(SimCommand::AddObject(cube_spec(DVec3::new(5.0, 0.5, 0.0))))
-        .unwrap();
+    let mut b = ShatterWorld::default_scene();
+    b.apply(SimCommand::AddObject(Box::new(cube_spec(Vec3::new(
+        5.0, 0.5, 0.0,
+    )))))
+    .unwrap();
     let stats = b.stats();
     b.apply(SimCommand::SaveScene(path.clone())).unwrap();
 
-    let mut other = SimBridge::default();
+    let mut other = empty_world();
     other.apply(SimCommand::LoadScene(path)).unwrap();
     assert_eq!(other.world().object_ids().len(), 5);
     assert_eq!(other.stats().fragments, stats.fragments);
@@ -321,36 +355,24 @@ fn custom_projectile_and_custom_mesh_checks() {
     );
     assert!(check_custom_mesh(&dir.path().join("none.stl")).is_err());
 
-    let mut b = SimBridge::default_scene();
+    let mut b = ShatterWorld::default_scene();
     b.apply(SimCommand::Start).unwrap();
-    b.apply(SimCommand::Fire {
-        spec: ProjectileSpec {
-            shape: ShapeChoice::Custom(good),
-            ..ProjectileSpec::default()
-        },
+    b.apply(SimCommand::Fire(ProjectileSpec {
+        shape: load_projectile(&good).unwrap(),
         from: Vec3::new(8.0, 3.0, 8.0),
         to: Vec3::new(8.0, 3.0, 0.0),
-    })
+        ..ProjectileSpec::default()
+    }))
     .unwrap();
     let key = b
         .poses()
         .into_iter()
-        .find(|p| p.key.object & PROJECTILE_BIT != 0)
+        .find(|p| matches!(p.key.owner, PieceOwner::Projectile(_)))
         .unwrap()
         .key;
     // The drawn hull of the tetrahedron: 4 triangles.
     assert_eq!(b.piece_parts(key).unwrap()[0].mesh.positions.len(), 12);
-    let err = b
-        .apply(SimCommand::Fire {
-            spec: ProjectileSpec {
-                shape: ShapeChoice::Custom(broken),
-                ..ProjectileSpec::default()
-            },
-            from: Vec3::ZERO,
-            to: Vec3::X,
-        })
-        .unwrap_err();
-    assert!(err.to_string().contains("projectile"), "{err}");
+    assert!(load_projectile(&broken).is_err());
 }
 
 #[test]
@@ -367,7 +389,7 @@ fn keyboard_shortcuts_are_the_scene_controls_and_leave_the_camera_keys_alone() {
 
 #[test]
 fn the_state_line_the_web_page_reads_is_json_with_the_counts() {
-    let mut b = SimBridge::default_scene();
+    let mut b = ShatterWorld::default_scene();
     b.apply(SimCommand::Start).unwrap();
     fire_at_wall(&mut b, 40.0);
     steps(&mut b, 30);
@@ -383,7 +405,7 @@ fn the_state_line_the_web_page_reads_is_json_with_the_counts() {
 
 #[test]
 fn every_example_scene_loads_and_the_runtime_one_starts_whole() {
-    let mut b = SimBridge::default_scene();
+    let mut b = ShatterWorld::default_scene();
     for (name, _) in shatter_app::sim_bridge::EXAMPLE_SCENES {
         b.apply(SimCommand::LoadExample((*name).to_owned()))
             .unwrap_or_else(|e| panic!("{name}: {e}"));
@@ -408,21 +430,24 @@ fn every_example_scene_loads_and_the_runtime_one_starts_whole() {
 /// the cut faces with the interior material.
 #[test]
 fn a_textured_custom_object_keeps_its_texture_and_uvs() {
-    let mut b = SimBridge::default_scene();
+    let mut b = ShatterWorld::default_scene();
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../tests/corpus/gltf/BoxTextured.glb");
     let id = b
-        .apply(SimCommand::AddObject(ObjectSpec {
-            shape: ShapeChoice::Custom(path),
-            material: MaterialPreset::Ceramic,
-            ..cube_spec(DVec3::new(0.0, 3.0, 4.0))
-        }))
+        .apply(SimCommand::AddObject(Box::new(ObjectSpec {
+            source: FractureSource::MeshFile {
+                path: path.display().to_string(),
+                params: voronoi(12),
+            },
+            material: MaterialPreset::Ceramic.material(),
+            ..cube_spec(Vec3::new(0.0, 3.0, 4.0))
+        })))
         .unwrap()
         .unwrap();
     let keys: Vec<_> = b
         .poses()
         .into_iter()
-        .filter(|p| p.key.object == id)
+        .filter(|p| p.key.owner == PieceOwner::Object(id))
         .map(|p| p.key)
         .collect();
     assert!(keys.len() >= 8, "{} fragments", keys.len());
@@ -446,7 +471,7 @@ fn a_textured_custom_object_keeps_its_texture_and_uvs() {
 
 #[test]
 fn the_textured_example_brings_its_files_and_draws_them_textured() {
-    let mut b = SimBridge::default_scene();
+    let mut b = ShatterWorld::default_scene();
     b.load_example("textured").unwrap();
     // The files come with the app, under the paths the scene names (the web page has no
     // disk to read them from).
@@ -455,7 +480,7 @@ fn the_textured_example_brings_its_files_and_draws_them_textured() {
         assert_eq!(files.get(path).as_deref(), Some(*bytes), "{path}");
     }
     let objects: std::collections::BTreeSet<_> =
-        b.poses().into_iter().map(|p| p.key.object).collect();
+        b.poses().into_iter().map(|p| p.key.owner).collect();
     assert_eq!(objects.len(), 2, "the spider and the box");
     let mut textured = std::collections::BTreeSet::new();
     for pose in b.poses() {
@@ -465,7 +490,7 @@ fn the_textured_example_brings_its_files_and_draws_them_textured() {
                 .as_ref()
                 .is_some_and(|(_, m)| m.base_color_texture.is_some())
             {
-                textured.insert(pose.key.object);
+                textured.insert(pose.key.owner);
             }
         }
     }

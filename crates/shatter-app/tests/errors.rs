@@ -5,11 +5,12 @@
 
 use std::error::Error;
 
-use glam::{DVec3, Vec3};
-use shatter_app::commands::{ObjectSpec, ProjectileSpec, ShapeChoice, SimCommand};
+use bevy_shatter::world::MeshFileError;
+use glam::Vec3;
+use shatter_app::commands::{FractureSource, ObjectId, ObjectSpec, SimCommand};
 use shatter_app::error::AppError;
 use shatter_app::scene_store::StoreError;
-use shatter_app::sim_bridge::SimBridge;
+use shatter_app::sim_bridge::{SandboxWorld, ShatterWorld, load_projectile};
 use shatter_app::ui::fields::FieldError;
 use shatter_app::ui::forms::{AddObjectForm, FormError, SceneFileForm, TransformForm};
 use shatter_app::ui::state::UiState;
@@ -19,18 +20,25 @@ use shatter_sim::SimError;
 /// The Add Object panel's default object.
 fn default_object() -> ObjectSpec {
     AddObjectForm::default()
-        .validate(&TransformForm::default(), &|_| Ok(()))
+        .validate(&TransformForm::default(), &|_| Ok(()), None)
         .unwrap()
+}
+
+fn empty_world() -> ShatterWorld {
+    ShatterWorld::sandbox(shatter_sim::World::new(Default::default()))
 }
 
 #[test]
 fn a_missing_object_mesh_is_a_sim_error_whose_source_is_the_readers() {
-    let mut b = SimBridge::default();
+    let mut b = empty_world();
     let err = b
-        .apply(SimCommand::AddObject(ObjectSpec {
-            shape: ShapeChoice::Custom("no/such/mesh.obj".into()),
+        .apply(SimCommand::AddObject(Box::new(ObjectSpec {
+            source: FractureSource::MeshFile {
+                path: "no/such/mesh.obj".into(),
+                params: Default::default(),
+            },
             ..default_object()
-        }))
+        })))
         .unwrap_err();
     assert!(
         matches!(err, AppError::Sim(SimError::Mesh { .. })),
@@ -52,25 +60,31 @@ fn a_missing_object_mesh_is_a_sim_error_whose_source_is_the_readers() {
 
 #[test]
 fn a_missing_projectile_mesh_keeps_the_readers_error() {
-    let mut b = SimBridge::default();
-    let err = b
-        .apply(SimCommand::Fire {
-            spec: ProjectileSpec {
-                shape: ShapeChoice::Custom("no/such/rock.obj".into()),
-                ..ProjectileSpec::default()
-            },
-            from: Vec3::ZERO,
-            to: Vec3::X,
-        })
-        .unwrap_err();
-    assert!(matches!(err, AppError::ProjectileMesh(_)), "{err:?}");
-    let io = err.source().unwrap().downcast_ref::<MeshIoError>().unwrap();
-    assert_eq!(err.to_string(), format!("projectile: {io}"));
+    let err = load_projectile("no/such/rock.obj".as_ref()).unwrap_err();
+    assert!(
+        matches!(err, AppError::MeshFile(MeshFileError::CannotRead { .. })),
+        "{err:?}"
+    );
+    let io = err
+        .source()
+        .unwrap()
+        .downcast_ref::<std::io::Error>()
+        .unwrap();
+    assert_eq!(
+        err.to_string(),
+        format!("cannot read 'no/such/rock.obj': {io}")
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let broken = dir.path().join("rock.obj");
+    std::fs::write(&broken, "v 0 0 0\nf 1 2 3\n").unwrap();
+    let err = load_projectile(&broken).unwrap_err();
+    let reader = err.source().unwrap().downcast_ref::<MeshIoError>().unwrap();
+    assert_eq!(err.to_string(), reader.to_string());
 }
 
 #[test]
 fn scene_and_example_errors_keep_their_sources() {
-    let mut b = SimBridge::default();
+    let mut b = empty_world();
     let err = b.apply(SimCommand::LoadExample("nope".into())).unwrap_err();
     assert!(matches!(&err, AppError::UnknownExample { name } if name == "nope"));
     assert!(err.source().is_none());
@@ -106,7 +120,7 @@ fn forms_keep_typed_errors_and_show_their_messages() {
         ..Default::default()
     };
     let err = form
-        .validate(&TransformForm::default(), &|_| Ok(()))
+        .validate(&TransformForm::default(), &|_| Ok(()), None)
         .unwrap_err();
     assert_eq!(
         err.error("random_vertices"),
@@ -131,17 +145,22 @@ fn forms_keep_typed_errors_and_show_their_messages() {
 
     // A refused object: the typed error next to the fields, its message in the status.
     let mut s = UiState::default();
-    let cmd = SimCommand::AddObject(ObjectSpec {
-        position: DVec3::ZERO,
+    let cmd = SimCommand::AddObject(Box::new(ObjectSpec {
+        position: Vec3::ZERO,
         ..default_object()
-    });
-    s.command_failed(&cmd, AppError::NoObject(4));
-    assert_eq!(s.status, "no object 4");
+    }));
+    let refused = empty_world()
+        .apply(SimCommand::DeleteObject(ObjectId(4)))
+        .unwrap_err();
+    let message = refused.to_string();
+    assert!(message.contains('4'), "{message}");
+    s.command_failed(&cmd, refused);
+    assert_eq!(s.status, message);
     assert!(matches!(
         s.add_errors.error("object"),
         Some(FormError::App(_))
     ));
-    assert_eq!(s.add_errors.get("object").as_deref(), Some("no object 4"));
+    assert_eq!(s.add_errors.get("object"), Some(message));
 }
 
 #[test]

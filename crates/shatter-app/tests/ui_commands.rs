@@ -4,9 +4,10 @@
 
 use std::path::{Path, PathBuf};
 
-use glam::{DVec3, Vec3};
+use glam::Vec3;
 use shatter_app::commands::{
-    BondModel, MaterialPreset, MethodKind, Pattern, ProjectileSpec, Shape, ShapeChoice, SimCommand,
+    BondModel, FractureSource, MaterialPreset, MethodKind, ObjectId, Pattern, ProjectileShape,
+    ProjectileSpec, Shape, SimCommand,
 };
 use shatter_app::error::AppError;
 use shatter_app::sim_bridge::check_custom_mesh;
@@ -19,6 +20,13 @@ fn any_mesh(_: &Path) -> Result<(), AppError> {
     Ok(())
 }
 
+fn any_projectile(_: &Path) -> Result<ProjectileShape, AppError> {
+    Ok(ProjectileShape::Custom(vec![
+        glam::DVec3::ZERO,
+        glam::DVec3::ONE,
+    ]))
+}
+
 fn temp_dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("shatter-app-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();
@@ -28,12 +36,20 @@ fn temp_dir(name: &str) -> PathBuf {
 #[test]
 fn add_object_defaults_follow_the_thesis() {
     let spec = AddObjectForm::default()
-        .validate(&TransformForm::default(), &any_mesh)
+        .validate(&TransformForm::default(), &any_mesh, None)
         .unwrap();
-    assert_eq!(spec.position, DVec3::new(0.0, 10.0, 0.0));
-    assert_eq!(spec.scale, DVec3::ONE);
-    assert_eq!(spec.shape, ShapeChoice::Builtin(Shape::Cube));
-    assert_eq!(spec.lifetime, None);
+    assert_eq!(spec.position, Vec3::new(0.0, 10.0, 0.0));
+    assert_eq!(spec.scale, Vec3::ONE);
+    assert!(matches!(
+        spec.source,
+        FractureSource::Shape {
+            shape: Shape::Cube,
+            ..
+        }
+    ));
+    assert_eq!(spec.last, None);
+    assert_eq!(spec.material, MaterialPreset::Stone.material());
+    assert_eq!(spec.break_force, Some(20000.0));
 }
 
 #[test]
@@ -43,7 +59,7 @@ fn non_integer_random_vertices_is_reported_next_to_the_field() {
         ..Default::default()
     };
     let err = form
-        .validate(&TransformForm::default(), &any_mesh)
+        .validate(&TransformForm::default(), &any_mesh, None)
         .unwrap_err();
     assert!(
         err.get("random_vertices")
@@ -66,7 +82,7 @@ fn every_bad_field_is_reported_at_once() {
         position: ["0".into(), "ten".into(), "0".into()],
         scale: ["1".into(), "0".into(), "1".into()],
     };
-    let err = form.validate(&transform, &any_mesh).unwrap_err();
+    let err = form.validate(&transform, &any_mesh, None).unwrap_err();
     for field in ["break_force", "skip", "last", "color", "position", "scale"] {
         assert!(err.get(field).is_some(), "{field} not flagged: {err:?}");
     }
@@ -84,7 +100,7 @@ fn unreadable_custom_mesh_is_refused() {
         ..Default::default()
     };
     let err = form
-        .validate(&TransformForm::default(), &check_custom_mesh)
+        .validate(&TransformForm::default(), &check_custom_mesh, None)
         .unwrap_err();
     assert!(err.get("shape").unwrap().contains("cannot read"), "{err:?}");
 
@@ -96,7 +112,7 @@ fn unreadable_custom_mesh_is_refused() {
         ..Default::default()
     };
     let err = form
-        .validate(&TransformForm::default(), &check_custom_mesh)
+        .validate(&TransformForm::default(), &check_custom_mesh, None)
         .unwrap_err();
     assert!(err.get("shape").unwrap().contains(".obj"), "{err:?}");
 
@@ -106,7 +122,7 @@ fn unreadable_custom_mesh_is_refused() {
     };
     assert!(
         empty_path
-            .validate(&TransformForm::default(), &any_mesh)
+            .validate(&TransformForm::default(), &any_mesh, None)
             .unwrap_err()
             .get("shape")
             .is_some()
@@ -121,7 +137,7 @@ fn voronoi_needs_at_least_one_piece() {
         ..Default::default()
     };
     assert!(
-        form.validate(&TransformForm::default(), &any_mesh)
+        form.validate(&TransformForm::default(), &any_mesh, None)
             .unwrap_err()
             .get("random_vertices")
             .is_some()
@@ -139,17 +155,17 @@ fn draw_adds_then_edits_the_same_object_and_apply_closes() {
     let SimCommand::AddObject(spec) = first else {
         panic!("first Draw should add, got {first:?}");
     };
-    assert_eq!(spec.position, DVec3::new(1.0, 2.0, 3.0));
-    s.object_added(7);
+    assert_eq!(spec.position, Vec3::new(1.0, 2.0, 3.0));
+    s.object_added(ObjectId(7));
     s.transform.scale = ["2".into(), "2".into(), "2".into()];
     let second = s.draw(&any_mesh).unwrap();
     match second {
-        SimCommand::EditObject(7, spec) => assert_eq!(spec.scale, DVec3::splat(2.0)),
+        SimCommand::EditObject(ObjectId(7), spec) => assert_eq!(spec.scale, Vec3::splat(2.0)),
         other => panic!("second Draw should rebuild object 7, got {other:?}"),
     }
     assert!(matches!(
         s.apply(&any_mesh),
-        Some(SimCommand::EditObject(7, _))
+        Some(SimCommand::EditObject(ObjectId(7), _))
     ));
     assert_eq!(s.add_page, AddObjectPage::Closed);
     assert_eq!(s.target, None);
@@ -184,7 +200,7 @@ fn fire_ok_sets_the_projectile_only_when_valid() {
     let mut s = UiState::default();
     let before = s.projectile.clone();
     s.fire.speed = "-3".into();
-    assert!(!s.fire_ok(&any_mesh));
+    assert!(!s.fire_ok(&any_projectile));
     assert_eq!(s.projectile, before);
     assert!(s.fire_errors.get("speed").is_some());
     s.fire = FireForm {
@@ -193,10 +209,17 @@ fn fire_ok_sets_the_projectile_only_when_valid() {
         last: "4".into(),
         ..Default::default()
     };
-    assert!(s.fire_ok(&any_mesh));
-    assert_eq!(s.projectile.shape, ShapeChoice::Builtin(Shape::Cube));
+    assert!(s.fire_ok(&any_projectile));
+    assert_eq!(s.projectile.shape, ProjectileShape::Cube);
     assert_eq!(s.projectile.speed, 75.0);
-    assert_eq!(s.projectile.lifetime, Some(4.0));
+    assert_eq!(s.projectile.last, Some(4.0));
+    // A custom shape is the file's points, read by the loader the panel is given.
+    s.fire.shape = ShapeKind::Custom;
+    assert!(!s.fire_ok(&any_projectile), "no path given");
+    assert!(s.fire_errors.get("shape").is_some());
+    s.fire.custom_path = "rock.obj".into();
+    assert!(s.fire_ok(&any_projectile));
+    assert_eq!(s.projectile.shape, any_projectile(Path::new("")).unwrap());
 }
 
 #[test]
@@ -228,18 +251,25 @@ fn click_fires_from_the_camera_at_the_hit_point() {
     let s = UiState::default();
     let eye = Vec3::new(0.0, 5.0, 20.0);
     let dir = Vec3::new(0.0, 0.0, -1.0);
-    let hit = Some((3, Vec3::new(0.0, 5.0, 0.3)));
+    let hit = Some((ObjectId(3), Vec3::new(0.0, 5.0, 0.3)));
     match s.click(eye, dir, hit) {
-        ClickOutcome::Command(SimCommand::Fire { from, to, spec }) => {
-            assert_eq!(to, Vec3::new(0.0, 5.0, 0.3));
-            assert!(from.distance(eye) < 1.5);
-            assert_eq!(spec, s.projectile);
+        ClickOutcome::Command(SimCommand::Fire(spec)) => {
+            assert_eq!(spec.to, Vec3::new(0.0, 5.0, 0.3));
+            assert!(spec.from.distance(eye) < 1.5);
+            assert_eq!(
+                spec,
+                ProjectileSpec {
+                    from: spec.from,
+                    to: spec.to,
+                    ..s.projectile.clone()
+                }
+            );
         }
         other => panic!("expected Fire, got {other:?}"),
     }
     // A miss aims at a far point along the ray.
     match s.click(eye, Vec3::Y, None) {
-        ClickOutcome::Command(SimCommand::Fire { to, .. }) => assert!(to.y > 100.0),
+        ClickOutcome::Command(SimCommand::Fire(spec)) => assert!(spec.to.y > 100.0),
         other => panic!("expected Fire, got {other:?}"),
     }
 }
@@ -272,16 +302,16 @@ fn click_explodes_when_add_force_is_on() {
 fn edit_and_delete_act_on_the_clicked_object_and_exclude_each_other() {
     let mut s = UiState::default();
     let eye = Vec3::ZERO;
-    let hit = Some((5, Vec3::X));
+    let hit = Some((ObjectId(5), Vec3::X));
     s.toggle_delete();
     assert_eq!(
         s.click(eye, Vec3::X, hit),
-        ClickOutcome::Command(SimCommand::DeleteObject(5))
+        ClickOutcome::Command(SimCommand::DeleteObject(ObjectId(5)))
     );
     assert_eq!(s.click(eye, Vec3::X, None), ClickOutcome::Nothing);
     s.toggle_edit();
     assert!(!s.delete_mode);
-    assert_eq!(s.click(eye, Vec3::X, hit), ClickOutcome::Edit(5));
+    assert_eq!(s.click(eye, Vec3::X, hit), ClickOutcome::Edit(ObjectId(5)));
 }
 
 #[test]
@@ -292,15 +322,32 @@ fn edit_fills_the_panel_with_the_object_and_draw_rebuilds_it() {
         last: "12".into(),
         ..Default::default()
     }
-    .validate(&TransformForm::default(), &any_mesh)
+    .validate(&TransformForm::default(), &any_mesh, None)
     .unwrap();
+    // What the panels do not show is kept through an edit.
+    let spec = shatter_app::commands::ObjectSpec {
+        anchored: true,
+        rotation: glam::Quat::from_rotation_y(0.5),
+        ..spec
+    };
     let mut s = UiState::default();
-    s.edit_object(9, &spec);
+    s.edit_object(ObjectId(9), &spec);
     assert_eq!(s.add.shape, ShapeKind::Builtin(Shape::Capsule));
     assert_eq!(s.add.random_vertices, "77");
     assert_eq!(s.transform.position[1], "10");
     s.next_page(&any_mesh);
-    assert_eq!(s.draw(&any_mesh), Some(SimCommand::EditObject(9, spec)));
+    assert_eq!(
+        s.draw(&any_mesh),
+        Some(SimCommand::EditObject(ObjectId(9), Box::new(spec.clone())))
+    );
+    s.add.random_vertices = "20".into();
+    match s.draw(&any_mesh) {
+        Some(SimCommand::EditObject(ObjectId(9), edited)) => {
+            assert!(edited.anchored && edited.rotation == spec.rotation);
+            assert_eq!(edited.source.params().unwrap().random_vertices, 20);
+        }
+        other => panic!("expected an edit, got {other:?}"),
+    }
 }
 
 #[test]
@@ -376,13 +423,8 @@ fn the_shape_lists_come_from_the_vocabulary() {
 
 #[test]
 fn the_fire_panel_defaults_are_the_simulators() {
-    let sim = shatter_sim::ProjectileSpec::default();
-    let app = ProjectileSpec::default();
-    assert_eq!(app.speed, f64::from(sim.speed));
-    assert_eq!(app.size, f64::from(sim.size));
-    assert_eq!(app.density, f64::from(sim.density));
-    assert_eq!(app.color, sim.color);
-    assert_eq!(app.lifetime, sim.last.map(f64::from));
-    let validated = FireForm::default().validate(&|_| Ok(())).unwrap();
-    assert_eq!(validated, app);
+    // The panel's fields, validated untouched, are the simulator's projectile.
+    let validated = FireForm::default().validate(&any_projectile).unwrap();
+    assert_eq!(validated, ProjectileSpec::default());
+    assert_eq!(UiState::default().projectile, ProjectileSpec::default());
 }

@@ -1,6 +1,6 @@
-//! Drawing the simulation: fragment meshes and the scene around them.
+//! The stage the simulation is drawn on (its pieces are drawn by bevy_shatter).
 
-pub mod fragment_mesh;
 pub mod scene;
 
+pub use bevy_shatter::world::RenderStats;
 pub use scene::SceneRenderPlugin;

@@ -1,4 +1,4 @@
-//! The scenes a [`SimBridge`] is built from or replaced by: the default scene, the
+//! The scenes the sandbox's [`ShatterWorld`] is built from or replaced by: the default scene, the
 //! example scenes built into the app, and scene files (from the disk, or from the web
 //! page's storage in the web build, see [`crate::scene_store`]).
 
@@ -6,7 +6,7 @@ use std::path::Path;
 
 use shatter_sim::scene::Scene;
 
-use super::SimBridge;
+use super::{SandboxWorld, ShatterWorld};
 use crate::error::AppError;
 
 /// The scene the app opens with (also embedded in the web build).
@@ -82,64 +82,55 @@ pub const EXAMPLE_FILES: &[(&str, &[u8])] = &[
     ),
 ];
 
-impl SimBridge {
-    /// The default scene (`assets/scenes/default.toml`, embedded): a brick wall, the bird,
-    /// a glass pane and a crate on the ground. Should the bundled file ever fail to build
-    /// (this crate's tests check it does not), the error is logged and the world is empty.
-    pub fn default_scene() -> Self {
-        Self::from_scene_text(DEFAULT_SCENE).unwrap_or_else(|e| {
-            bevy::log::error!("default scene: {e}");
-            Self::default()
-        })
-    }
+/// See [`SandboxWorld::default_scene`]: a brick wall, the bird, a glass pane and a crate
+/// on the ground.
+pub(super) fn default_scene() -> ShatterWorld {
+    from_scene_text(DEFAULT_SCENE).unwrap_or_else(|e| {
+        bevy::log::error!("default scene: {e}");
+        ShatterWorld::sandbox(shatter_sim::World::new(Default::default()))
+    })
+}
 
-    /// A bridge over the world of a scene file's text.
-    pub fn from_scene_text(text: &str) -> Result<Self, AppError> {
-        let scene = Scene::parse(text)?;
-        let world = scene.build_with_files(None, crate::picked_files::picked_files().clone())?;
-        Ok(Self::from_world(world))
-    }
+pub(super) fn from_scene_text(text: &str) -> Result<ShatterWorld, AppError> {
+    let scene = Scene::parse(text)?;
+    let world = scene.build_with_files(None, crate::picked_files::picked_files().clone())?;
+    Ok(ShatterWorld::sandbox(world))
+}
 
-    /// Replace the world with a scene file's; on error the current scene stays.
-    pub fn load_scene(&mut self, path: &Path) -> Result<(), AppError> {
-        let scene = if cfg!(target_arch = "wasm32") {
-            let text = crate::scene_store::read(path)?;
-            Scene::parse(&text).map_err(|source| AppError::SceneText {
-                path: path.into(),
-                source,
-            })?
-        } else {
-            // From the file, so mesh paths resolve relative to the scene's folder.
-            Scene::load(path)?
-        };
-        self.replace_world(&scene)
-    }
+pub(super) fn load_scene(world: &mut ShatterWorld, path: &Path) -> Result<(), AppError> {
+    let scene = if cfg!(target_arch = "wasm32") {
+        let text = crate::scene_store::read(path)?;
+        Scene::parse(&text).map_err(|source| AppError::SceneText {
+            path: path.into(),
+            source,
+        })?
+    } else {
+        // From the file, so mesh paths resolve relative to the scene's folder.
+        Scene::load(path)?
+    };
+    replace_world(world, &scene)
+}
 
-    /// Replace the world with the example scene `name` ([`EXAMPLE_SCENES`]); on error the
-    /// current scene stays.
-    pub fn load_example(&mut self, name: &str) -> Result<(), AppError> {
-        let Some(&(name, text)) = EXAMPLE_SCENES.iter().find(|(n, _)| *n == name) else {
-            return Err(AppError::UnknownExample {
-                name: name.to_owned(),
-            });
-        };
-        let scene = Scene::parse(text).map_err(|source| AppError::ExampleText { name, source })?;
-        let files = crate::picked_files::picked_files();
-        for (path, bytes) in EXAMPLE_FILES {
-            if !files.contains(path) {
-                files.insert(path, bytes.to_vec());
-            }
+pub(super) fn load_example(world: &mut ShatterWorld, name: &str) -> Result<(), AppError> {
+    let Some(&(name, text)) = EXAMPLE_SCENES.iter().find(|(n, _)| *n == name) else {
+        return Err(AppError::UnknownExample {
+            name: name.to_owned(),
+        });
+    };
+    let scene = Scene::parse(text).map_err(|source| AppError::ExampleText { name, source })?;
+    let files = crate::picked_files::picked_files();
+    for (path, bytes) in EXAMPLE_FILES {
+        if !files.contains(path) {
+            files.insert(path, bytes.to_vec());
         }
-        self.replace_world(&scene)
     }
+    replace_world(world, &scene)
+}
 
-    /// Build `scene` (with the bond model chosen in the panel) and make it the world.
-    fn replace_world(&mut self, scene: &Scene) -> Result<(), AppError> {
-        let world =
-            scene.build_with_files(self.bond_model, crate::picked_files::picked_files().clone())?;
-        self.world = world;
-        self.accumulator = 0.0;
-        self.new_build();
-        Ok(())
-    }
+/// Build `scene` (with the bond model chosen in the panel) and make it the world.
+fn replace_world(world: &mut ShatterWorld, scene: &Scene) -> Result<(), AppError> {
+    world.replace_with(|bond_model| {
+        scene.build_with_files(bond_model, crate::picked_files::picked_files().clone())
+    })?;
+    Ok(())
 }

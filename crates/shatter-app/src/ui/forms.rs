@@ -8,13 +8,13 @@ mod errors;
 
 use std::path::{Path, PathBuf};
 
-use shatter_sim::ProjectileShape;
+use shatter_sim::FractureSource;
 
-pub use self::errors::{FieldErrors, FormError, MeshCheck};
+pub use self::errors::{FieldErrors, FormError, MeshCheck, ProjectileLoad};
 
 use crate::commands::{
-    ForceSpec, MaterialPreset, MethodKind, ObjectSpec, Pattern, ProjectileSpec, Shape, ShapeChoice,
-    SimCommand,
+    ForceSpec, MaterialPreset, MethodKind, ObjectSpec, Pattern, ProjectileShape, ProjectileSpec,
+    Shape, SimCommand,
 };
 use crate::ui::fields::{
     parse_color, parse_count, parse_lifetime, parse_non_negative, parse_positive, parse_real,
@@ -65,31 +65,58 @@ impl ShapeKind {
             .unwrap_or_default()
     }
 
-    /// The kind of an already chosen shape.
-    pub fn of(shape: &ShapeChoice) -> Self {
-        match shape {
-            ShapeChoice::Builtin(s) => Self::Builtin(*s),
-            ShapeChoice::Custom(_) => Self::Custom,
+    /// The kind of an object's source, and its file's path (empty for a shape). A
+    /// prebuilt fracture shows as a cube: editing it rebuilds it from a cube.
+    pub fn of(source: &FractureSource) -> (Self, String) {
+        match source {
+            FractureSource::Shape { shape, .. } => (Self::Builtin(*shape), String::new()),
+            FractureSource::MeshFile { path, .. } => (Self::Custom, path.clone()),
+            FractureSource::Prebuilt(_) => (Self::Builtin(Shape::Cube), String::new()),
         }
+    }
+
+    /// The kind of a projectile's shape.
+    pub fn of_projectile(shape: &ProjectileShape) -> Self {
+        shape.shape().map_or(Self::Custom, Self::Builtin)
     }
 }
 
-fn shape_choice(
+/// The trimmed path of the Custom shape, or why there is none.
+fn mesh_path(path: &str) -> Result<&Path, FormError> {
+    match path.trim() {
+        "" => Err(FormError::NoMeshPath),
+        p => Ok(Path::new(p)),
+    }
+}
+
+/// An object's source for a shape kind: a built-in shape, or a file that `check` accepts.
+fn object_source(
     kind: ShapeKind,
     path: &str,
     check: MeshCheck<'_>,
-) -> Result<ShapeChoice, FormError> {
+) -> Result<(Option<Shape>, Option<PathBuf>), FormError> {
     Ok(match kind {
-        ShapeKind::Builtin(s) => ShapeChoice::Builtin(s),
+        ShapeKind::Builtin(s) => (Some(s), None),
         ShapeKind::Custom => {
-            let p = path.trim();
-            if p.is_empty() {
-                return Err(FormError::NoMeshPath);
-            }
-            check(Path::new(p))?;
-            ShapeChoice::Custom(PathBuf::from(p))
+            let p = mesh_path(path)?;
+            check(p)?;
+            (None, Some(p.to_path_buf()))
         }
     })
+}
+
+/// A projectile's shape for a shape kind: a primitive, or a file's points from `load`.
+fn projectile_shape(
+    kind: ShapeKind,
+    path: &str,
+    load: ProjectileLoad<'_>,
+) -> Result<ProjectileShape, FormError> {
+    match kind {
+        ShapeKind::Builtin(s) => ProjectileShape::primitive(s)
+            .or_else(|| ProjectileShape::from_mesh(&s.mesh()))
+            .ok_or(FormError::FlatProjectile),
+        ShapeKind::Custom => Ok(load(mesh_path(path)?)?),
+    }
 }
 
 /// The thesis's Add Object panel (first page), plus method, pattern and material.
@@ -157,20 +184,22 @@ impl Default for TransformForm {
 }
 
 impl AddObjectForm {
-    /// Validate both pages into an object specification.
+    /// Validate both pages into the simulation's object. `base` is the object being
+    /// edited: what the panels do not show (rotation, anchoring, a brick grid's other
+    /// counts, material overrides, a seed, runtime fracture) is kept from it.
     pub fn validate(
         &self,
         transform: &TransformForm,
         check: MeshCheck<'_>,
+        base: Option<&ObjectSpec>,
     ) -> Result<ObjectSpec, FieldErrors> {
         let mut e = FieldErrors::default();
-        let shape = e.check("shape", shape_choice(self.shape, &self.custom_path, check));
+        let source = e.check("shape", object_source(self.shape, &self.custom_path, check));
         let random_vertices = e.check("random_vertices", parse_count(&self.random_vertices));
         let break_force = e.check("break_force", parse_positive(&self.break_force));
         let skip = e.check("skip", parse_count(&self.skip));
         let lifetime = e.check("last", parse_lifetime(&self.last));
         let color = e.check("color", parse_color(&self.color));
-        let material = Some(self.material);
         if self.method != MethodKind::Tetra && random_vertices == Some(0) {
             e.insert(
                 "random_vertices",
@@ -181,67 +210,110 @@ impl AddObjectForm {
         }
         let position = e.check("position", parse_vec3(&transform.position, parse_real));
         let scale = e.check("scale", parse_vec3(&transform.scale, parse_positive));
-        match (
-            shape,
+        let (
+            Some(source),
+            Some(random_vertices),
+            Some(break_force),
+            Some(skip),
+            Some(lifetime),
+            Some(color),
+            Some(position),
+            Some(scale),
+        ) = (
+            source,
             random_vertices,
             break_force,
             skip,
             lifetime,
             color,
-            material,
             position,
             scale,
-        ) {
-            (
-                Some(shape),
-                Some(random_vertices),
-                Some(break_force),
-                Some(skip),
-                Some(lifetime),
-                Some(color),
-                Some(material),
-                Some(position),
-                Some(scale),
-            ) if e.is_empty() => Ok(ObjectSpec {
-                shape,
-                method: self.method,
-                pattern: self.pattern,
-                random_vertices,
-                skip,
-                center: self.center,
-                break_force,
-                lifetime,
-                color,
-                material,
-                position,
-                scale,
-            }),
-            _ => Err(e),
+        )
+        else {
+            return Err(e);
+        };
+        if !e.is_empty() {
+            return Err(e);
         }
+        let base_params = base.and_then(|b| b.source.params().cloned());
+        let mut params = base_params.clone().unwrap_or_default();
+        params.method = Some(self.method);
+        params.pattern = Some(self.pattern);
+        params.skip = skip;
+        params.center = self.center;
+        match self.method {
+            MethodKind::Tetra => params.random_vertices = random_vertices,
+            MethodKind::Voronoi | MethodKind::Slice => params.pieces = random_vertices,
+            MethodKind::Grid => {
+                // Keep an edited object's grid if its x count did not change; otherwise
+                // cut cubes of about equal size along each axis.
+                let keep = base_params
+                    .as_ref()
+                    .is_some_and(|p| p.grid[0] == random_vertices);
+                if !keep {
+                    let n = random_vertices.max(1);
+                    let cell = scale.x / f64::from(n);
+                    let along = |len: f64| ((len / cell).round() as u32).clamp(1, 64);
+                    params.grid = [n, along(scale.y), along(scale.z)];
+                }
+            }
+        }
+        let source = match source {
+            (_, Some(path)) => FractureSource::MeshFile {
+                path: path.display().to_string(),
+                params,
+            },
+            (shape, None) => FractureSource::Shape {
+                shape: shape.unwrap_or(Shape::Cube),
+                params,
+            },
+        };
+        let mut out = match base {
+            Some(b) => ObjectSpec {
+                source,
+                ..b.clone()
+            },
+            None => ObjectSpec::new(self.shape.label().to_lowercase(), source),
+        };
+        // An edited object keeps its material overrides while the preset stays the same.
+        if base.is_none_or(|b| MaterialPreset::of(&b.material) != Some(self.material)) {
+            out.material = self.material.material();
+        }
+        out.break_force = Some(break_force as f32);
+        out.position = position.as_vec3();
+        out.scale = scale.as_vec3();
+        out.color = color;
+        out.last = lifetime.map(|t| t as f32);
+        Ok(out)
     }
 
     /// Fill both pages from an existing object (Edit).
     pub fn from_spec(spec: &ObjectSpec) -> (AddObjectForm, TransformForm) {
         let f = |v: f64| format!("{v}");
+        let (shape, custom_path) = ShapeKind::of(&spec.source);
+        let params = spec.source.params().cloned().unwrap_or_default();
+        let method = params.method.unwrap_or(spec.material.method);
+        let random_vertices = match method {
+            MethodKind::Tetra => params.random_vertices,
+            MethodKind::Voronoi | MethodKind::Slice => params.pieces,
+            MethodKind::Grid => params.grid[0],
+        };
         let form = AddObjectForm {
-            shape: ShapeKind::of(&spec.shape),
-            custom_path: match &spec.shape {
-                ShapeChoice::Custom(p) => p.display().to_string(),
-                _ => String::new(),
-            },
-            random_vertices: spec.random_vertices.to_string(),
-            break_force: f(spec.break_force),
-            skip: spec.skip.to_string(),
-            center: spec.center,
-            last: spec.lifetime.map(f).unwrap_or_default(),
+            shape,
+            custom_path,
+            random_vertices: random_vertices.to_string(),
+            break_force: f(f64::from(spec.effective_break_force())),
+            skip: params.skip.to_string(),
+            center: params.center,
+            last: spec.last.map(|t| f(f64::from(t))).unwrap_or_default(),
             color: spec.color.map(|c| format!("{c}")),
-            method: spec.method,
-            pattern: spec.pattern,
-            material: spec.material,
+            method,
+            pattern: params.pattern.unwrap_or(spec.material.pattern),
+            material: MaterialPreset::of(&spec.material).unwrap_or_default(),
         };
         let transform = TransformForm {
-            position: spec.position.to_array().map(f),
-            scale: spec.scale.to_array().map(f),
+            position: spec.position.as_dvec3().to_array().map(f),
+            scale: spec.scale.as_dvec3().to_array().map(f),
         };
         (form, transform)
     }
@@ -267,12 +339,14 @@ pub struct FireForm {
 }
 
 impl Default for FireForm {
+    /// The simulator's projectile ([`ProjectileSpec::default`]): one definition for the
+    /// Fire panel, the scene files and the CLI.
     fn default() -> Self {
         let d = ProjectileSpec::default();
         Self {
-            shape: ShapeKind::of(&d.shape),
+            shape: ShapeKind::of_projectile(&d.shape),
             custom_path: String::new(),
-            last: d.lifetime.map(|v| v.to_string()).unwrap_or_default(),
+            last: d.last.map(|v| v.to_string()).unwrap_or_default(),
             color: d.color.map(|c| c.to_string()),
             speed: d.speed.to_string(),
             size: d.size.to_string(),
@@ -282,24 +356,29 @@ impl Default for FireForm {
 }
 
 impl FireForm {
-    /// Validate into the projectile that later clicks fire ("OK").
-    pub fn validate(&self, check: MeshCheck<'_>) -> Result<ProjectileSpec, FieldErrors> {
+    /// Validate into the projectile that later clicks fire ("OK"); a click sets its
+    /// launch and aim points.
+    pub fn validate(&self, load: ProjectileLoad<'_>) -> Result<ProjectileSpec, FieldErrors> {
         let mut e = FieldErrors::default();
-        let shape = e.check("shape", shape_choice(self.shape, &self.custom_path, check));
-        let lifetime = e.check("last", parse_lifetime(&self.last));
+        let shape = e.check(
+            "shape",
+            projectile_shape(self.shape, &self.custom_path, load),
+        );
+        let last = e.check("last", parse_lifetime(&self.last));
         let color = e.check("color", parse_color(&self.color));
         let speed = e.check("speed", parse_positive(&self.speed));
         let size = e.check("size", parse_positive(&self.size));
         let density = e.check("density", parse_positive(&self.density));
-        match (shape, lifetime, color, speed, size, density) {
-            (Some(shape), Some(lifetime), Some(color), Some(speed), Some(size), Some(density)) => {
+        match (shape, last, color, speed, size, density) {
+            (Some(shape), Some(last), Some(color), Some(speed), Some(size), Some(density)) => {
                 Ok(ProjectileSpec {
                     shape,
-                    lifetime,
+                    last: last.map(|t| t as f32),
                     color,
-                    speed,
-                    size,
-                    density,
+                    speed: speed as f32,
+                    size: size as f32,
+                    density: density as f32,
+                    ..ProjectileSpec::default()
                 })
             }
             _ => Err(e),

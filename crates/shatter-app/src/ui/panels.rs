@@ -4,7 +4,7 @@
 use bevy_egui::egui::{self, Color32, RichText, Ui};
 
 use crate::commands::{BondModel, MaterialPreset, MethodKind, Pattern, SimCommand};
-use crate::sim_bridge::{SimStats, check_custom_mesh};
+use crate::sim_bridge::{SimStats, check_custom_mesh, load_projectile};
 use crate::ui::forms::{FieldErrors, ShapeKind};
 use crate::ui::state::{AddObjectPage, UiState};
 
@@ -315,11 +315,15 @@ fn fire_panel(ui: &mut Ui, s: &mut UiState) {
             text_row(ui, "Size", &mut f.size, &s.fire_errors, "size");
             text_row(ui, "Density", &mut f.density, &s.fire_errors, "density");
             ui.horizontal(|ui| {
-                if ui.button("OK").clicked() && s.fire_ok(&check_custom_mesh) {
+                if ui.button("OK").clicked() && s.fire_ok(&load_projectile) {
                     s.status = "projectile set".to_owned();
                 }
                 let p = &s.projectile;
-                ui.small(format!("{} {:.0} m/s", p.shape.name(), p.speed));
+                ui.small(format!(
+                    "{} {:.0} m/s",
+                    p.shape.shape().map_or("custom", |s| s.name()),
+                    p.speed
+                ));
             });
         });
 }

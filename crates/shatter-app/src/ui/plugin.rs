@@ -5,7 +5,7 @@ use bevy::prelude::*;
 use bevy_egui::{EguiContexts, EguiPrimaryContextPass};
 
 use crate::commands::SimCommand;
-use crate::sim_bridge::SimBridge;
+use crate::sim_bridge::ShatterWorld;
 use crate::ui::panels::draw_panels;
 use crate::ui::state::UiState;
 
@@ -53,7 +53,7 @@ fn draw_ui(
     mut contexts: EguiContexts,
     mut ui_state: ResMut<UiState>,
     mut pending: ResMut<PendingCommands>,
-    bridge: Res<SimBridge>,
+    bridge: Res<ShatterWorld>,
     rate: Res<FrameRate>,
 ) -> Result {
     let ctx = contexts.ctx_mut()?;

@@ -7,7 +7,8 @@ use glam::Vec3;
 use crate::commands::{BondModel, ForceSpec, ObjectId, ObjectSpec, ProjectileSpec, SimCommand};
 use crate::error::AppError;
 use crate::ui::forms::{
-    AddObjectForm, FieldErrors, FireForm, ForceForm, MeshCheck, SceneFileForm, TransformForm,
+    AddObjectForm, FieldErrors, FireForm, ForceForm, MeshCheck, ProjectileLoad, SceneFileForm,
+    TransformForm,
 };
 
 /// Which page of the Add Object panel is shown.
@@ -47,13 +48,16 @@ pub struct UiState {
     /// The object the transform page is editing: the one made by Draw, or the one
     /// clicked in Edit mode.
     pub target: Option<ObjectId>,
+    /// The target's specification as last built (what the panels do not show is kept
+    /// from it when the fields are drawn again).
+    pub base: Option<ObjectSpec>,
     /// Draw was pressed for a new object whose id has not come back yet.
     pub awaiting_new_id: bool,
     /// Fire panel fields.
     pub fire: FireForm,
     /// Errors of the Fire panel.
     pub fire_errors: FieldErrors,
-    /// The projectile clicks fire (set by OK).
+    /// The projectile clicks fire (set by OK; a click sets its launch and aim points).
     pub projectile: ProjectileSpec,
     /// Add Force fields.
     pub force_form: ForceForm,
@@ -79,7 +83,10 @@ impl UiState {
     /// "Next" on the parameters page: validate it (with the current transform) and show
     /// the transform page.
     pub fn next_page(&mut self, check: MeshCheck<'_>) {
-        match self.add.validate(&self.transform, check) {
+        match self
+            .add
+            .validate(&self.transform, check, self.base.as_ref())
+        {
             Ok(_) => {
                 self.add_errors = FieldErrors::default();
                 self.add_page = AddObjectPage::Transform;
@@ -91,11 +98,12 @@ impl UiState {
     /// "Draw": build (or rebuild) the object with the current fields.
     pub fn draw(&mut self, check: MeshCheck<'_>) -> Option<SimCommand> {
         let spec = self.validated_object(check)?;
+        self.base = Some(spec.clone());
         Some(match self.target {
-            Some(id) => SimCommand::EditObject(id, spec),
+            Some(id) => SimCommand::EditObject(id, Box::new(spec)),
             None => {
                 self.awaiting_new_id = true;
-                SimCommand::AddObject(spec)
+                SimCommand::AddObject(Box::new(spec))
             }
         })
     }
@@ -115,6 +123,7 @@ impl UiState {
     /// Open the Add Object panel for a new object.
     pub fn open_add_panel(&mut self) {
         self.target = None;
+        self.base = None;
         self.awaiting_new_id = false;
         self.add_errors = FieldErrors::default();
         self.add_page = AddObjectPage::Parameters;
@@ -124,6 +133,7 @@ impl UiState {
     pub fn close_add_panel(&mut self) {
         self.add_page = AddObjectPage::Closed;
         self.target = None;
+        self.base = None;
     }
 
     /// The simulation created an object (answer to Draw's AddObject).
@@ -144,6 +154,7 @@ impl UiState {
         if matches!(cmd, SimCommand::AddObject(_) | SimCommand::EditObject(..)) {
             if matches!(cmd, SimCommand::AddObject(_)) {
                 self.awaiting_new_id = false;
+                self.base = None;
             }
             self.add_errors.insert("object", error);
         }
@@ -155,14 +166,15 @@ impl UiState {
         self.add = add;
         self.transform = transform;
         self.target = Some(id);
+        self.base = Some(spec.clone());
         self.awaiting_new_id = false;
         self.add_errors = FieldErrors::default();
         self.add_page = AddObjectPage::Parameters;
     }
 
     /// "OK" of the Fire panel: keep the projectile if the fields are valid.
-    pub fn fire_ok(&mut self, check: MeshCheck<'_>) -> bool {
-        match self.fire.validate(check) {
+    pub fn fire_ok(&mut self, load: ProjectileLoad<'_>) -> bool {
+        match self.fire.validate(load) {
             Ok(p) => {
                 self.projectile = p;
                 self.fire_errors = FieldErrors::default();
@@ -235,15 +247,18 @@ impl UiState {
         // Launch a little in front of the camera so the projectile does not start inside
         // the near plane.
         let from = eye + dir * LAUNCH_OFFSET;
-        ClickOutcome::Command(SimCommand::Fire {
-            spec: self.projectile.clone(),
+        ClickOutcome::Command(SimCommand::Fire(ProjectileSpec {
             from,
             to,
-        })
+            ..self.projectile.clone()
+        }))
     }
 
     fn validated_object(&mut self, check: MeshCheck<'_>) -> Option<ObjectSpec> {
-        match self.add.validate(&self.transform, check) {
+        match self
+            .add
+            .validate(&self.transform, check, self.base.as_ref())
+        {
             Ok(spec) => {
                 self.add_errors = FieldErrors::default();
                 Some(spec)

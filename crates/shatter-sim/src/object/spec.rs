@@ -76,6 +76,8 @@ impl Default for FractureParams {
 }
 
 /// Where an object's fragments come from.
+///
+/// Two prebuilt sources are equal when they share one fracture (`Arc::ptr_eq`).
 #[derive(Debug, Clone)]
 pub enum FractureSource {
     /// An already fractured object (in its own frame, before scaling).
@@ -97,6 +99,26 @@ pub enum FractureSource {
     },
 }
 
+impl PartialEq for FractureSource {
+    fn eq(&self, other: &Self) -> bool {
+        match (self, other) {
+            (FractureSource::Prebuilt(a), FractureSource::Prebuilt(b)) => Arc::ptr_eq(a, b),
+            (
+                FractureSource::Shape { shape, params },
+                FractureSource::Shape {
+                    shape: s,
+                    params: p,
+                },
+            ) => shape == s && params == p,
+            (
+                FractureSource::MeshFile { path, params },
+                FractureSource::MeshFile { path: q, params: p },
+            ) => path == q && params == p,
+            _ => false,
+        }
+    }
+}
+
 impl FractureSource {
     /// The fracture parameters of a shape or a mesh file (`None` for a prebuilt fracture).
     pub fn params(&self) -> Option<&FractureParams> {
@@ -110,7 +132,7 @@ impl FractureSource {
 }
 
 /// A breakable object: a fracture, a material, a transform and the thesis's parameters.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct ObjectSpec {
     /// A label (shown by the app; not required to be unique).
     pub name: String,
@@ -140,14 +162,24 @@ pub struct ObjectSpec {
 }
 
 impl ObjectSpec {
-    /// An object from a prebuilt fracture with default material, placed at `position`.
-    pub fn from_fracture(fracture: Fracture, position: Vec3) -> ObjectSpec {
+    /// An object named `name` from `source`, with the default material, at the origin,
+    /// unrotated and unscaled, grey, living for ever, with the world's bond model.
+    ///
+    /// ```
+    /// use shatter_sim::{FractureParams, FractureSource, ObjectSpec, Shape};
+    /// let spec = ObjectSpec::new("crate", FractureSource::Shape {
+    ///     shape: Shape::Cube,
+    ///     params: FractureParams::default(),
+    /// });
+    /// assert_eq!(spec.effective_break_force(), spec.material.strength);
+    /// ```
+    pub fn new(name: impl Into<String>, source: FractureSource) -> ObjectSpec {
         ObjectSpec {
-            name: "object".to_string(),
-            source: FractureSource::Prebuilt(Arc::new(fracture)),
+            name: name.into(),
+            source,
             material: Material::default(),
             break_force: None,
-            position,
+            position: Vec3::ZERO,
             rotation: Quat::IDENTITY,
             scale: Vec3::ONE,
             color: [0.7, 0.7, 0.7],
@@ -155,6 +187,14 @@ impl ObjectSpec {
             bond_model: None,
             anchored: false,
             runtime: RuntimeFracture::default(),
+        }
+    }
+
+    /// An object from a prebuilt fracture with default material, placed at `position`.
+    pub fn from_fracture(fracture: Fracture, position: Vec3) -> ObjectSpec {
+        ObjectSpec {
+            position,
+            ..ObjectSpec::new("object", FractureSource::Prebuilt(Arc::new(fracture)))
         }
     }
 
@@ -343,6 +383,33 @@ impl ProjectileShape {
     /// Parses `cube`, `sphere`, `capsule`, `cylinder` (custom meshes come with points).
     pub fn from_name(name: &str) -> Option<ProjectileShape> {
         name.parse().ok().and_then(ProjectileShape::primitive)
+    }
+
+    /// A custom shape of a mesh's vertices (a user's file, or a built-in shape with no
+    /// primitive collider), centred on their bounds and scaled so the largest extent is
+    /// 1: the projectile's size is then its largest extent. `None` when the vertices span
+    /// no extent or are not finite.
+    ///
+    /// ```
+    /// use shatter_sim::{ProjectileShape, Shape};
+    /// let Some(ProjectileShape::Custom(points)) = ProjectileShape::from_mesh(&Shape::Bird.mesh())
+    /// else { panic!("the bird has an extent") };
+    /// let extent = points.iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()).max(p.z.abs()));
+    /// assert!((extent - 0.5).abs() < 1e-9); // half the largest extent, about the centre
+    /// ```
+    pub fn from_mesh(mesh: &TriMesh) -> Option<ProjectileShape> {
+        let (lo, hi) = mesh.bounds()?;
+        let extent = (hi - lo).max_element();
+        if !(extent.is_finite() && extent > 0.0) {
+            return None;
+        }
+        let centre = (lo + hi) * 0.5;
+        Some(ProjectileShape::Custom(
+            mesh.positions
+                .iter()
+                .map(|p| (*p - centre) / extent)
+                .collect(),
+        ))
     }
 
     /// The built-in shape this projectile is, if any (`None` for a custom one).

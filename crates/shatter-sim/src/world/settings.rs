@@ -155,6 +155,13 @@ pub use crate::breaking::BreakCause;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct ObjectId(pub u32);
 
+impl std::fmt::Display for ObjectId {
+    /// The number alone, as the app's panels and the CLI's messages show it.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
 /// Whether the simulation advances.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RunState {

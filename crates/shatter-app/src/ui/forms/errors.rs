@@ -6,6 +6,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use shatter_sim::ProjectileShape;
 use thiserror::Error;
 
 use crate::commands::MethodKind;
@@ -23,6 +24,9 @@ pub enum FormError {
     /// Custom shape chosen, but no path given.
     #[error("give the path of an OBJ, STL or glTF file")]
     NoMeshPath,
+    /// A built-in projectile shape with no primitive collider whose mesh spans no extent.
+    #[error("this shape has no extent to fire")]
+    FlatProjectile,
     /// A fracture method other than tetrahedra asked for no pieces.
     #[error("{} needs at least 1 piece", method.name())]
     NoPieces {
@@ -138,3 +142,7 @@ impl fmt::Display for FieldErrors {
 /// Checks that a custom mesh file can be used; returns why not otherwise
 /// ([`crate::sim_bridge::check_custom_mesh`]).
 pub type MeshCheck<'a> = &'a dyn Fn(&Path) -> Result<(), AppError>;
+
+/// How the Fire panel reads a custom projectile's mesh file into its shape (the app's
+/// [`load_projectile`](crate::sim_bridge::load_projectile); tests pass their own).
+pub type ProjectileLoad<'a> = &'a dyn Fn(&Path) -> Result<ProjectileShape, AppError>;
