@@ -45,15 +45,17 @@ pub enum AppError {
         source: SimError,
     },
     /// No built-in example scene has this name.
-    #[error("no example scene `{name}` (there are: {})", example_names())]
+    #[error("no example scene `{name}` (there are: {valid})")]
     UnknownExample {
         /// The name asked for.
         name: String,
+        /// The example scenes' names, as a list for the message.
+        valid: String,
     },
     /// A built-in example scene does not parse.
     #[error("{name}.toml: {source}")]
     ExampleText {
-        /// The example's name (one of [`EXAMPLE_SCENES`](crate::sim_bridge::EXAMPLE_SCENES)).
+        /// The example's name.
         name: &'static str,
         /// What the parser reported.
         #[source]
@@ -62,13 +64,4 @@ pub enum AppError {
     /// A custom mesh file (of an object or a projectile) that cannot be used.
     #[error(transparent)]
     MeshFile(#[from] MeshFileError),
-}
-
-/// The names of the example scenes, as a list for a message.
-fn example_names() -> String {
-    let names: Vec<&str> = crate::sim_bridge::EXAMPLE_SCENES
-        .iter()
-        .map(|(n, _)| *n)
-        .collect();
-    names.join(", ")
 }

@@ -86,7 +86,7 @@ fn a_missing_projectile_mesh_keeps_the_readers_error() {
 fn scene_and_example_errors_keep_their_sources() {
     let mut b = empty_world();
     let err = b.apply(SimCommand::LoadExample("nope".into())).unwrap_err();
-    assert!(matches!(&err, AppError::UnknownExample { name } if name == "nope"));
+    assert!(matches!(&err, AppError::UnknownExample { name, .. } if name == "nope"));
     assert!(err.source().is_none());
 
     let dir = tempfile::tempdir().unwrap();

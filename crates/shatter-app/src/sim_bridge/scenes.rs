@@ -113,8 +113,10 @@ pub(super) fn load_scene(world: &mut ShatterWorld, path: &Path) -> Result<(), Ap
 
 pub(super) fn load_example(world: &mut ShatterWorld, name: &str) -> Result<(), AppError> {
     let Some(&(name, text)) = EXAMPLE_SCENES.iter().find(|(n, _)| *n == name) else {
+        let valid: Vec<&str> = EXAMPLE_SCENES.iter().map(|(n, _)| *n).collect();
         return Err(AppError::UnknownExample {
             name: name.to_owned(),
+            valid: valid.join(", "),
         });
     };
     let scene = Scene::parse(text).map_err(|source| AppError::ExampleText { name, source })?;

@@ -1,10 +1,9 @@
 //! Breakable objects, projectiles and explosions: their specs and their preparation.
 
 pub mod prepare;
+pub mod projectile;
 pub mod spec;
 
 pub use prepare::Prepared;
-pub use spec::{
-    BondModel, ExplosionSpec, FractureParams, FractureSource, ObjectSpec, ProjectileShape,
-    ProjectileSpec,
-};
+pub use projectile::{ProjectileShape, ProjectileSpec};
+pub use spec::{BondModel, ExplosionSpec, FractureParams, FractureSource, ObjectSpec};
