@@ -10,15 +10,19 @@ use shatter_geom::mesh::TriMesh;
 #[cfg(feature = "avian")]
 use shatter_geom::model::{Corners, Material, Model};
 
-/// shatter's vector to Bevy's.
-pub(crate) fn to_bevy(v: glam::Vec3) -> Vec3 {
+/// shatter's vector (glam 0.33) to Bevy's (glam 0.32).
+pub fn to_bevy(v: glam::Vec3) -> Vec3 {
     Vec3::from_array(v.to_array())
 }
 
-/// Bevy's vector to shatter's.
-#[cfg(feature = "avian")]
-pub(crate) fn from_bevy(v: Vec3) -> glam::Vec3 {
+/// Bevy's vector (glam 0.32) to shatter's (glam 0.33).
+pub fn from_bevy(v: Vec3) -> glam::Vec3 {
     glam::Vec3::from_array(v.to_array())
+}
+
+/// shatter's rotation (glam 0.33) to Bevy's (glam 0.32).
+pub fn quat_to_bevy(q: glam::Quat) -> Quat {
+    Quat::from_array(q.to_array())
 }
 
 #[cfg(feature = "avian")]

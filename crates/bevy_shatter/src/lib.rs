@@ -60,6 +60,8 @@ mod convert;
 mod spawn;
 pub mod world;
 
+pub use convert::{from_bevy, quat_to_bevy, to_bevy};
+
 #[cfg(feature = "avian")]
 pub use game::*;
 

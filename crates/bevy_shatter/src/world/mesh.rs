@@ -109,12 +109,6 @@ fn face_normal(a: glam::DVec3, b: glam::DVec3, c: glam::DVec3) -> [f32; 3] {
         .to_array()
 }
 
-/// The colour of interior faces for a surface colour (linear RGB in `[0, 1]`): the one
-/// rule, [`shatter_geom::io::interior_color_of`].
-pub fn interior_color(surface: [f32; 3]) -> [f32; 3] {
-    shatter_geom::io::interior_color_of(surface)
-}
-
 /// Split `fragment` into flat-shaded triangles coloured by `color` (linear RGB in
 /// `[0, 1]`, the simulation's convention).
 ///
@@ -128,7 +122,7 @@ pub fn flat_mesh(fragment: &Fragment, color: [f32; 3]) -> FlatMesh {
 pub fn flat_trimesh(mesh: &TriMesh, interior: &[bool], color: [f32; 3]) -> FlatMesh {
     let mut out = FlatMesh::for_triangles(mesh.triangles.len(), false);
     let surface = color;
-    let inner = interior_color(color);
+    let inner = shatter_geom::io::interior_color_of(color);
     for t in 0..mesh.triangles.len() {
         let [a, b, c] = mesh.triangle(t);
         let normal = face_normal(a, b, c);

@@ -50,7 +50,7 @@ use self::mesh::{FlatPart, flat_trimesh, fragment_parts};
 pub use self::mesh_file::{
     MemoryFiles, MeshFileError, check_mesh_file, pick_file, projectile_from_file,
 };
-use crate::convert::to_bevy;
+use crate::convert::{quat_to_bevy, to_bevy};
 
 /// Steps a [`ShatterWorld`] resource and draws it.
 ///
@@ -94,7 +94,7 @@ impl Plugin for ShatterWorldPlugin {
 
 fn advance(mut world: ResMut<ShatterWorld>, time: Res<Time>, mut out: MessageWriter<WorldEvent>) {
     world.advance(time.delta_secs_f64());
-    out.write_batch(world.world.take_events().into_iter().map(WorldEvent));
+    out.write_batch(world.take_events().into_iter().map(WorldEvent));
 }
 
 /// At most this many fixed steps per frame; time beyond is dropped (the simulation then
@@ -230,22 +230,26 @@ impl ShatterWorld {
 
     /// Add an object (with [`ShatterWorld::bond_model`] when set). Nothing changes on
     /// error.
-    pub fn add_object(&mut self, mut spec: ObjectSpec) -> Result<ObjectId, SimError> {
-        if let Some(m) = self.bond_model {
-            spec.bond_model = Some(m);
-        }
+    pub fn add_object(&mut self, spec: ObjectSpec) -> Result<ObjectId, SimError> {
+        let spec = self.with_bond_model(spec);
         self.world.add_object(spec)
     }
 
     /// Rebuild object `id` from `spec` (with [`ShatterWorld::bond_model`] when set).
     /// Nothing changes on error.
-    pub fn edit_object(&mut self, id: ObjectId, mut spec: ObjectSpec) -> Result<(), SimError> {
-        if let Some(m) = self.bond_model {
-            spec.bond_model = Some(m);
-        }
+    pub fn edit_object(&mut self, id: ObjectId, spec: ObjectSpec) -> Result<(), SimError> {
+        let spec = self.with_bond_model(spec);
         self.world.edit_object(id, spec)?;
         self.new_build();
         Ok(())
+    }
+
+    /// `spec` with [`ShatterWorld::bond_model`] when one is set.
+    fn with_bond_model(&self, spec: ObjectSpec) -> ObjectSpec {
+        ObjectSpec {
+            bond_model: self.bond_model.or(spec.bond_model),
+            ..spec
+        }
     }
 
     /// Remove object `id`.
@@ -329,30 +333,23 @@ impl ShatterWorld {
 
     /// Every drawable piece and its pose.
     pub fn poses(&self) -> Vec<PiecePose> {
+        let piece = |owner, fragment, pose: shatter_sim::Pose| PiecePose {
+            key: PieceKey {
+                owner,
+                build: self.build,
+                fragment,
+            },
+            translation: to_bevy(pose.translation),
+            rotation: quat_to_bevy(pose.rotation),
+        };
         let mut out = Vec::new();
         for id in self.world.object_ids() {
             for (f, pose) in self.world.fragment_poses(id) {
-                out.push(PiecePose {
-                    key: PieceKey {
-                        owner: PieceOwner::Object(id),
-                        build: self.build,
-                        fragment: f,
-                    },
-                    translation: to_bevy(pose.translation),
-                    rotation: Quat::from_array(pose.rotation.to_array()),
-                });
+                out.push(piece(PieceOwner::Object(id), f, pose));
             }
         }
         for p in self.world.projectiles() {
-            out.push(PiecePose {
-                key: PieceKey {
-                    owner: PieceOwner::Projectile(p.index),
-                    build: self.build,
-                    fragment: 0,
-                },
-                translation: to_bevy(p.pose.translation),
-                rotation: Quat::from_array(p.pose.rotation.to_array()),
-            });
+            out.push(piece(PieceOwner::Projectile(p.index), 0, p.pose));
         }
         out
     }

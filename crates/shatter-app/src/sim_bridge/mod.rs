@@ -18,15 +18,8 @@ pub use self::scenes::{DEFAULT_SCENE, EXAMPLE_FILES, EXAMPLE_SCENES};
 use crate::commands::{ObjectId, ProjectileShape, SimCommand};
 pub use crate::error::AppError;
 
-/// Bevy's vector (glam 0.32) from the simulation's (glam 0.33).
-pub fn to_bevy(v: glam::Vec3) -> bevy::math::Vec3 {
-    bevy::math::Vec3::from_array(v.to_array())
-}
-
-/// The simulation's vector (glam 0.33) from Bevy's (glam 0.32).
-pub fn to_sim(v: bevy::math::Vec3) -> glam::Vec3 {
-    glam::Vec3::from_array(v.to_array())
-}
+/// The vector conversions between Bevy (glam 0.32) and the simulation (glam 0.33).
+pub use bevy_shatter::{from_bevy as to_sim, to_bevy};
 
 /// Whether a custom mesh file can be a breakable object (for the forms' validation):
 /// [`bevy_shatter::world::check_mesh_file`] on the picked files and the disk.

@@ -8,7 +8,7 @@ mod errors;
 
 use std::path::{Path, PathBuf};
 
-use shatter_sim::FractureSource;
+use shatter_sim::{FractureParams, FractureSource};
 
 pub use self::errors::{FieldErrors, FormError, MeshCheck, ProjectileLoad};
 
@@ -89,18 +89,35 @@ fn mesh_path(path: &str) -> Result<&Path, FormError> {
     }
 }
 
+/// What an object is cut from, before its fracture parameters are known.
+enum Picked {
+    /// A built-in shape.
+    Shape(Shape),
+    /// A mesh file.
+    File(PathBuf),
+}
+
+impl Picked {
+    /// The object's source, cut with `params`.
+    fn with(self, params: FractureParams) -> FractureSource {
+        match self {
+            Picked::Shape(shape) => FractureSource::Shape { shape, params },
+            Picked::File(path) => FractureSource::MeshFile {
+                path: path.display().to_string(),
+                params,
+            },
+        }
+    }
+}
+
 /// An object's source for a shape kind: a built-in shape, or a file that `check` accepts.
-fn object_source(
-    kind: ShapeKind,
-    path: &str,
-    check: MeshCheck<'_>,
-) -> Result<(Option<Shape>, Option<PathBuf>), FormError> {
+fn object_source(kind: ShapeKind, path: &str, check: MeshCheck<'_>) -> Result<Picked, FormError> {
     Ok(match kind {
-        ShapeKind::Builtin(s) => (Some(s), None),
+        ShapeKind::Builtin(s) => Picked::Shape(s),
         ShapeKind::Custom => {
             let p = mesh_path(path)?;
             check(p)?;
-            (None, Some(p.to_path_buf()))
+            Picked::File(p.to_path_buf())
         }
     })
 }
@@ -258,16 +275,7 @@ impl AddObjectForm {
                 }
             }
         }
-        let source = match source {
-            (_, Some(path)) => FractureSource::MeshFile {
-                path: path.display().to_string(),
-                params,
-            },
-            (shape, None) => FractureSource::Shape {
-                shape: shape.unwrap_or(Shape::Cube),
-                params,
-            },
-        };
+        let source = source.with(params);
         let mut out = match base {
             Some(b) => ObjectSpec {
                 source,
