@@ -17,9 +17,13 @@ pub(super) struct Shell {
     pub lo: DVec3,
     /// Bounds.
     pub hi: DVec3,
-    /// One of its vertices, to ask which other shells enclose it.
+    /// One of its vertices: the origin of its volume sum.
     pub probe: DVec3,
 }
+
+/// Points of a shell at which the other shells' winding numbers are asked: centroids of
+/// up to this many of its triangles, spread over it.
+const PROBES: usize = 7;
 
 /// Whether every shell is wound consistently with its nesting.
 pub(super) enum ShellOrientation {
@@ -79,20 +83,42 @@ pub(super) fn orientation(mesh: &TriMesh) -> ShellOrientation {
     let mut wrong = 0;
     let mut wrong_if_flipped = 0;
     for (i, s) in shells.iter().enumerate() {
-        let mut winding = 0.0;
+        // Triangle centroids, not a vertex: where two shells touch (a face of one lying on
+        // a face of the other, as parts that met face to face do after their union) a
+        // point on the touching face has a winding number of ½ for the other shell, which
+        // says nothing. The median over probes spread across the shell is robust to that.
+        let step = (s.triangles.len() / PROBES).max(1);
+        let probes: Vec<DVec3> = s
+            .triangles
+            .iter()
+            .step_by(step)
+            .take(PROBES)
+            .map(|&t| {
+                let [a, b, c] = mesh.triangle(t as usize);
+                (a + b + c) / 3.0
+            })
+            .collect();
+        let mut windings = vec![0.0; probes.len()];
         for (j, other) in shells.iter().enumerate() {
             let inside_bounds = (s.lo.cmpge(other.lo) & s.hi.cmple(other.hi)).all();
             if i == j || !inside_bounds {
                 continue;
             }
-            let mut angle = 0.0;
-            for &t in &other.triangles {
-                let [a, b, c] = mesh.triangle(t as usize);
-                angle += solid_angle(a - s.probe, b - s.probe, c - s.probe);
+            for (w, &p) in windings.iter_mut().zip(&probes) {
+                let mut angle = 0.0;
+                for &t in &other.triangles {
+                    let [a, b, c] = mesh.triangle(t as usize);
+                    angle += solid_angle(a - p, b - p, c - p);
+                }
+                *w += angle / (4.0 * std::f64::consts::PI);
             }
-            winding += angle / (4.0 * std::f64::consts::PI);
         }
-        let w = winding.round();
+        windings.sort_unstable_by(f64::total_cmp);
+        let w = windings
+            .get(windings.len() / 2)
+            .copied()
+            .unwrap_or(0.0)
+            .round();
         let ok = |w: f64, volume: f64| (w == 0.0 && volume > 0.0) || (w == 1.0 && volume < 0.0);
         if !ok(w, s.volume) {
             wrong += 1;

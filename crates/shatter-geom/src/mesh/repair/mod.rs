@@ -140,11 +140,13 @@ pub fn repair(
             }
             soup = union::union(&soup).map_err(|e| RepairError::Union(e.0))?;
         }
+        let slivers = drop_flat_shells(&mut soup, flat);
         let shells = kept.len();
         report.union = Some(UnionReport {
             shells,
             triangles_before: before,
             triangles_after: soup.tris.len(),
+            sliver_shells_dropped: slivers,
         });
         report.shells = soup.mesh().check().components;
     }
@@ -204,6 +206,29 @@ fn close_shell(
         }
     }
     true
+}
+
+/// Drops the closed shells of `soup` whose volume is at most `flat` (slivers the union's
+/// rounding leaves); returns how many.
+fn drop_flat_shells(soup: &mut Soup, flat: f64) -> usize {
+    let (shells, _) = orient::shells_wound(soup);
+    let mut keep = vec![true; soup.tris.len()];
+    let mut dropped = 0;
+    for shell in &shells {
+        let v = orient::volume(soup, shell);
+        if v.abs() <= flat || !v.is_finite() {
+            dropped += 1;
+            for &t in &shell.tris {
+                keep[t as usize] = false;
+            }
+        }
+    }
+    if dropped > 0 && keep.iter().any(|&k| k) {
+        soup.retain(&keep);
+        dropped
+    } else {
+        0
+    }
 }
 
 /// Whether the closed shells cross, touch, or share edges or vertices (what a solid's

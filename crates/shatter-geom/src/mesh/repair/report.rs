@@ -40,6 +40,10 @@ pub struct UnionReport {
     pub triangles_before: usize,
     /// The union's triangles.
     pub triangles_after: usize,
+    /// Closed shells of the union without volume (below the same limit as the input's,
+    /// a millionth of a millionth of the bounding box's), dropped: slivers the rounding
+    /// of the union's exact vertices to f64 leaves where parts met face to face.
+    pub sliver_shells_dropped: usize,
 }
 
 /// What [`repair`](super::repair) did, with counts. Every field is zero (or `None`) for
@@ -180,6 +184,13 @@ impl RepairReport {
                 "{} closed shells cross or touch: replaced by their union ({} triangles, was {})",
                 u.shells, u.triangles_after, u.triangles_before
             ));
+            if u.sliver_shells_dropped > 0 {
+                let n = u.sliver_shells_dropped;
+                out.push(format!(
+                    "dropped {n} sliver shell{} without volume left by the union",
+                    s(n)
+                ));
+            }
         }
         out
     }

@@ -114,10 +114,13 @@ fn union_of(soup: &Soup) -> Result<Soup, UnionFailed> {
     Ok(result)
 }
 
-/// Where the union's surface touches itself at a point (two fans of one position, which
-/// Manifold keeps as separate vertices), moves each copy a millionth of the way towards
-/// the mean of its own neighbours, so the two fans no longer share a position (a solid's
-/// validation refuses a self-touching surface). Returns how many copies moved.
+/// Where the union's surface touches itself (two fans of one position, which Manifold
+/// keeps as separate vertices: solids that meet at a point or along an edge), moves each
+/// copy into its own solid, against its fan's area-weighted normal, by a millionth of
+/// its mean edge length, so the two fans no longer share a position (a solid's
+/// validation refuses a self-touching surface) and do not cross: both retreat from the
+/// contact. (Moving along the surface, towards the fan's neighbours, can push a copy of
+/// a flat fan across the coplanar fan it touches.) Returns how many copies moved.
 fn separate_pinches(pos: &mut [DVec3], tri_verts: &[u64]) -> usize {
     use std::collections::HashMap;
     let mut by_position: HashMap<[u64; 3], Vec<usize>> = HashMap::new();
@@ -131,25 +134,32 @@ fn separate_pinches(pos: &mut [DVec3], tri_verts: &[u64]) -> usize {
     if shared.is_empty() {
         return 0;
     }
-    let mut sum = vec![DVec3::ZERO; pos.len()];
+    let mut normal = vec![DVec3::ZERO; pos.len()];
+    let mut length = vec![0.0f64; pos.len()];
     let mut count = vec![0u32; pos.len()];
     for tri in tri_verts.chunks_exact(3) {
+        let t = [tri[0] as usize, tri[1] as usize, tri[2] as usize];
+        if t.iter().any(|&v| v >= pos.len()) {
+            continue;
+        }
+        let n = (pos[t[1]] - pos[t[0]]).cross(pos[t[2]] - pos[t[0]]);
         for k in 0..3 {
-            let (a, b) = (tri[k] as usize, tri[(k + 1) % 3] as usize);
-            if a < pos.len() && b < pos.len() {
-                sum[a] += pos[b];
-                count[a] += 1;
-                sum[b] += pos[a];
-                count[b] += 1;
-            }
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            normal[a] += n;
+            let d = pos[a].distance(pos[b]);
+            length[a] += d;
+            count[a] += 1;
+            length[b] += d;
+            count[b] += 1;
         }
     }
     let mut moved = 0;
     for group in shared {
         for v in group {
-            if count[v] > 0 {
-                let mean = sum[v] / f64::from(count[v]);
-                pos[v] += (mean - pos[v]) * 1e-6;
+            let n = normal[v].normalize_or_zero();
+            if count[v] > 0 && n != DVec3::ZERO {
+                let step = 1e-6 * length[v] / f64::from(count[v]);
+                pos[v] -= n * step;
                 moved += 1;
             }
         }
