@@ -12,9 +12,10 @@ use shatter_sim::breaking::{
 
 use crate::components::{Fragment, ShatterBody, ShatterObject};
 use crate::convert::{from_bevy, to_bevy};
+use crate::runtime::PendingHit;
 use crate::{BondBroken, ShatterSettings, Split};
 
-type BodyQuery<'w, 's> = Query<
+pub(crate) type BodyQuery<'w, 's> = Query<
     'w,
     's,
     (
@@ -27,11 +28,13 @@ type BodyQuery<'w, 's> = Query<
     ),
 >;
 
-/// Loads the bonds from the last step's contacts, breaks them, splits bodies.
+/// Loads the bonds from the last step's contacts (and the hits that cut objects at
+/// runtime in the step before), breaks them, splits bodies.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn break_bonds(
     mut commands: Commands,
     collisions: Collisions,
+    pending: Query<(Entity, &PendingHit)>,
     fragments: Query<&Fragment>,
     bodies: BodyQuery,
     mut objects: Query<&mut ShatterObject>,
@@ -71,6 +74,24 @@ pub(crate) fn break_bonds(
             }
             hits.push((*fragment, body, dynamic_mass(other), force, impulse * sign));
         }
+    }
+    // A runtime cut's hit loads its new object's bonds as a contact would have.
+    for (object, hit) in &pending {
+        commands.entity(object).remove::<PendingHit>();
+        let Some(body) = objects
+            .get(object)
+            .ok()
+            .and_then(|o| o.body_of.get(hit.fragment as usize).copied().flatten())
+        else {
+            continue;
+        };
+        *sums.entry(body).or_insert(0.0) += hit.force;
+        let fragment = Fragment {
+            object,
+            index: hit.fragment,
+        };
+        let other = (hit.other_mass > 0.0).then_some(hit.other_mass);
+        hits.push((fragment, Some(body), other, hit.force, hit.impulse));
     }
     if hits.is_empty() {
         return;

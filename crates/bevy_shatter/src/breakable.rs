@@ -6,6 +6,7 @@ use std::sync::Arc;
 use bevy::prelude::*;
 use bevy::tasks::{AsyncComputeTaskPool, Task};
 use shatter_geom::fracture::{self as geom, Fracture};
+use shatter_sim::runtime::{self, FractureTiming, RuntimeFracture};
 use shatter_sim::{BondModel, Material, MaterialPreset, MethodKind, Pattern};
 
 use crate::asset::FractureAsset;
@@ -26,6 +27,27 @@ use crate::{FractureFailed, convert};
 ///     ..Breakable::default()
 /// };
 /// assert_eq!(glass.seed, 1);
+/// ```
+///
+/// An object that starts whole and is cut where it is hit ([`Breakable::runtime`]):
+///
+/// ```
+/// use bevy_shatter::Breakable;
+/// use shatter_sim::runtime::{FractureTiming, RuntimeFracture};
+///
+/// let vase = Breakable {
+///     pieces: 30, // cells of the first cut, a quarter as many per level after
+///     runtime: RuntimeFracture {
+///         timing: FractureTiming::OnImpact,
+///         impulse: Some(200.0), // N·s of a hit that cuts; `None`: strength · dt
+///         depth: 2,             // loose fragments are cut once more when hit
+///         min_size: 0.05,       // but not those smaller than 5 cm
+///     },
+///     ..Breakable::default()
+/// };
+/// assert!(vase.validate().is_ok());
+/// let bad = Breakable { runtime: RuntimeFracture { depth: 0, ..vase.runtime }, ..vase };
+/// assert!(bad.validate().is_err());
 /// ```
 #[derive(Component, Debug, Clone, PartialEq)]
 pub struct Breakable {
@@ -54,6 +76,20 @@ pub struct Breakable {
     /// A pre-fractured object (a GLB with the `SHATTER_fracture` extension): its
     /// fragments and bonds are used as they are, and the entity needs no mesh.
     pub prefractured: Option<Handle<FractureAsset>>,
+    /// Runtime fracture, as shatter's own world does it: when the object is first cut,
+    /// the contact impulse of a hit that cuts, how many levels deep loose fragments are
+    /// cut again and the smallest fragment cut. The default is precomputed, depth 1: the
+    /// mesh is fractured at spawn and nothing is cut later.
+    ///
+    /// With [`FractureTiming::OnImpact`] the mesh is not fractured at spawn: it becomes
+    /// one intact dynamic body (anchored: static) holding a single fragment
+    /// ([`shatter_sim::runtime::whole`], level 0). A hit on a body holding a single
+    /// fragment that [`RuntimeFracture::cuts`] allows, whose contact impulse passes
+    /// [`RuntimeFracture::impulse`] (or [`Breakable::strength`] · dt), cuts that
+    /// fragment in that step around the hit ([`shatter_sim::runtime::cut_at`],
+    /// [`shatter_sim::runtime::pieces_at`] of [`Breakable::pieces`] for its level) into
+    /// a new bonded object one level deeper (a [`crate::RuntimeFractured`] message).
+    pub runtime: RuntimeFracture,
 }
 
 impl Default for Breakable {
@@ -70,6 +106,7 @@ impl Default for Breakable {
             break_force: None,
             anchored: false,
             prefractured: None,
+            runtime: RuntimeFracture::default(),
         }
     }
 }
@@ -104,17 +141,9 @@ impl Breakable {
         self.break_force.unwrap_or(self.material.strength)
     }
 
-    /// Fractures `mesh` (the entity's mesh, in its local frame) with these parameters.
-    ///
-    /// ```
-    /// use bevy::prelude::*;
-    /// let mesh = Mesh::from(Cuboid::new(2.0, 1.0, 1.0));
-    /// let fracture = bevy_shatter::Breakable::grid([2, 1, 1]).fracture(&mesh)?;
-    /// assert_eq!(fracture.fragments.len(), 2);
-    /// assert_eq!(fracture.bonds.len(), 1);
-    /// # Ok::<(), bevy_shatter::BreakableError>(())
-    /// ```
-    pub fn fracture(&self, mesh: &Mesh) -> Result<Fracture, BreakableError> {
+    /// Checks the settings the fracture itself does not: the bond model, the break
+    /// force and [`Breakable::runtime`] ([`RuntimeFracture::validate`]).
+    pub fn validate(&self) -> Result<(), BreakableError> {
         if self.bond_model != BondModel::Clusters {
             return Err(BreakableError::Unsupported(format!(
                 "bond model `{}` (only `clusters` so far)",
@@ -127,7 +156,35 @@ impl Breakable {
                 "break force must be > 0, got {s}"
             )));
         }
+        self.runtime
+            .validate("runtime")
+            .map_err(|e| BreakableError::Runtime(e.to_string()))?;
+        if self.prefractured.is_some() && self.runtime.timing == FractureTiming::OnImpact {
+            return Err(BreakableError::Unsupported(
+                "`on_impact` timing for a pre-fractured asset (it is already cut)".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Fractures `mesh` (the entity's mesh, in its local frame) with these parameters;
+    /// with [`FractureTiming::OnImpact`], `mesh` whole as a single fragment
+    /// ([`shatter_sim::runtime::whole`]).
+    ///
+    /// ```
+    /// use bevy::prelude::*;
+    /// let mesh = Mesh::from(Cuboid::new(2.0, 1.0, 1.0));
+    /// let fracture = bevy_shatter::Breakable::grid([2, 1, 1]).fracture(&mesh)?;
+    /// assert_eq!(fracture.fragments.len(), 2);
+    /// assert_eq!(fracture.bonds.len(), 1);
+    /// # Ok::<(), bevy_shatter::BreakableError>(())
+    /// ```
+    pub fn fracture(&self, mesh: &Mesh) -> Result<Fracture, BreakableError> {
+        self.validate()?;
         let model = convert::model(mesh).ok_or(BreakableError::NotATriangleMesh)?;
+        if self.runtime.timing == FractureTiming::OnImpact {
+            return runtime::whole(&model).map_err(|e| BreakableError::Fracture(e.to_string()));
+        }
         let method = match self.method {
             MethodKind::Voronoi => geom::Method::voronoi(self.pieces as usize, self.pattern),
             MethodKind::Slice => geom::Method::Slice {
@@ -173,6 +230,9 @@ pub enum BreakableError {
     /// The pre-fractured asset failed to load (the loader's message).
     #[error("the pre-fractured asset failed to load: {0}")]
     Asset(String),
+    /// [`Breakable::runtime`] has a bad value ([`RuntimeFracture::validate`]'s message).
+    #[error("bad runtime fracture settings: {0}")]
+    Runtime(String),
 }
 
 /// What a fracture task gives: the fracture, and the asset's anchors and break force.
@@ -180,6 +240,10 @@ pub(crate) struct Outcome {
     pub fracture: Arc<Fracture>,
     pub anchors: Option<Vec<u32>>,
     pub strength: Option<f32>,
+    /// The fragments' fracture level (0: an `on_impact` object's intact body).
+    pub level: u32,
+    /// The object it was cut from at runtime.
+    pub parent: Option<Entity>,
 }
 
 /// A fracture running on the async compute pool.
@@ -196,13 +260,16 @@ pub(crate) fn start_fractures(
 ) {
     for (entity, breakable, mesh) in &new {
         if let Some(handle) = &breakable.prefractured {
-            let outcome = match assets.get(handle) {
-                Some(asset) => Ok(Outcome {
+            let outcome = match (breakable.validate(), assets.get(handle)) {
+                (Err(e), _) => Err(e),
+                (Ok(()), Some(asset)) => Ok(Outcome {
                     fracture: asset.fracture.clone(),
                     anchors: (!asset.meta.anchors.is_empty()).then(|| asset.meta.anchors.clone()),
                     strength: asset.meta.thresholds.map(|t| t.strength as f32),
+                    level: 1,
+                    parent: None,
                 }),
-                None => match server.load_state(handle) {
+                (Ok(()), None) => match server.load_state(handle) {
                     bevy::asset::LoadState::Failed(e) => Err(BreakableError::Asset(e.to_string())),
                     // Not loaded yet: look again next step.
                     _ => continue,
@@ -221,11 +288,14 @@ pub(crate) fn start_fractures(
             continue;
         };
         let (breakable, mesh) = (breakable.clone(), mesh.clone());
+        let level = u32::from(breakable.runtime.timing != FractureTiming::OnImpact);
         let task = AsyncComputeTaskPool::get().spawn(async move {
             breakable.fracture(&mesh).map(|f| Outcome {
                 fracture: Arc::new(f),
                 anchors: None,
                 strength: None,
+                level,
+                parent: None,
             })
         });
         commands.entity(entity).insert(FractureTask(task));

@@ -35,6 +35,13 @@ pub struct ShatterObject {
     pub fragments: Vec<Entity>,
     /// Per fragment, whether it is fixed to the world.
     pub anchored: Vec<bool>,
+    /// The fragments' fracture level ([`shatter_sim::runtime::RuntimeFracture::depth`]):
+    /// 0 for an `on_impact` object's intact body, 1 for a fracture made at spawn (or
+    /// loaded) and for an intact body's first runtime cut, one more per cut after.
+    pub level: u32,
+    /// The object this one was cut from at runtime (`None` for a [`Breakable`](crate::Breakable)
+    /// entity's own record).
+    pub parent: Option<Entity>,
 }
 
 impl ShatterObject {

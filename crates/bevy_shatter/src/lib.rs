@@ -40,6 +40,10 @@
 //! A game can also fracture offline (`shatter fracture wall.obj --out wall.glb
 //! --anchor lowest`) and load the result: see [`FractureAsset`].
 //!
+//! Or fracture at runtime, where the object is hit: see [`Breakable::runtime`] (an
+//! `on_impact` object is one intact body until a hard hit cuts it; loose fragments are
+//! cut again, `depth` levels deep) and the [`RuntimeFractured`] message.
+//!
 //! A tool that wants shatter's own world instead (its stress solver, runtime cuts and
 //! damage, exactly as the CLI runs them), stepped and drawn by Bevy, uses [`world`]: the
 //! sandbox is built on it. That part needs no physics engine; the game part above is the
@@ -57,6 +61,8 @@ pub mod breakable;
 mod components;
 mod convert;
 #[cfg(feature = "avian")]
+mod runtime;
+#[cfg(feature = "avian")]
 mod spawn;
 pub mod world;
 
@@ -73,7 +79,7 @@ mod game {
     pub use crate::asset::{FractureAsset, FractureAssetError, FractureAssetLoader};
     pub use crate::breakable::{Breakable, BreakableError};
     pub use crate::components::{Fragment, ShatterBody, ShatterObject};
-    use crate::{asset, bonds, breakable, spawn};
+    use crate::{asset, bonds, breakable, runtime, spawn};
 
     /// The plugin: fractures [`Breakable`] entities and breaks their bonds.
     ///
@@ -119,11 +125,15 @@ mod game {
         /// Starts fracture tasks for new [`Breakable`]s and spawns the fragments of finished
         /// ones.
         Fracture,
-        /// Loads bonds from the last step's contacts, breaks them and splits bodies.
+        /// Loads bonds from the last step's contacts, breaks them and splits bodies;
+        /// then cuts the bodies of single fragments hit hard enough
+        /// ([`Breakable::runtime`]).
         Break,
     }
 
-    /// A [`Breakable`] entity was fractured and replaced by fragments.
+    /// A [`Breakable`] entity was fractured and replaced by fragments (an `on_impact`
+    /// object by its intact body: one fragment, no bonds; its runtime cuts send
+    /// [`RuntimeFractured`]).
     #[derive(Message, Debug, Clone, PartialEq)]
     pub struct Fractured {
         /// The entity (it stays, as the object's record: [`ShatterObject`]).
@@ -132,6 +142,42 @@ mod game {
         pub fragments: usize,
         /// Number of bonds.
         pub bonds: usize,
+    }
+
+    /// A fragment was cut at runtime ([`Breakable::runtime`]): a hit on the body holding
+    /// it alone passed the threshold. The fragment's body is gone; the cut's fragments are
+    /// a new object, `object`, on one bonded body at the same pose, moving as the
+    /// material did there. The hit loads its bonds in the next step.
+    ///
+    /// ```
+    /// use bevy::prelude::*;
+    /// use bevy_shatter::{RuntimeFractured, ShatterObject};
+    ///
+    /// // A game's system: count the cuts, and see which level they reached.
+    /// fn cuts(mut cut: MessageReader<RuntimeFractured>, objects: Query<&ShatterObject>) {
+    ///     for m in cut.read() {
+    ///         info!("{} cut into {} fragments (level {})", m.parent, m.fragments, m.level);
+    ///         if let Ok(object) = objects.get(m.object) {
+    ///             assert_eq!(object.parent, Some(m.parent));
+    ///         }
+    ///     }
+    /// }
+    /// # bevy::ecs::system::assert_is_system(cuts);
+    /// ```
+    #[derive(Message, Debug, Clone, PartialEq)]
+    pub struct RuntimeFractured {
+        /// The new object: an entity with the cut's [`ShatterObject`] (whose `parent` is
+        /// `parent` and `level` is `level`).
+        pub object: Entity,
+        /// The object the fragment was cut from (it keeps its record; the fragment's slot
+        /// in it has no body any more).
+        pub parent: Entity,
+        /// The fragment's index in `parent`'s fracture.
+        pub fragment: u32,
+        /// Number of fragments of the cut.
+        pub fragments: usize,
+        /// The new fragments' level: 1 for an intact body's cut, one more per cut after.
+        pub level: u32,
     }
 
     /// A bond of an object broke.
@@ -176,6 +222,7 @@ mod game {
             .add_message::<BondBroken>()
             .add_message::<Split>()
             .add_message::<FractureFailed>()
+            .add_message::<RuntimeFractured>()
             .configure_sets(
                 FixedUpdate,
                 (ShatterSystems::Fracture, ShatterSystems::Break).chain(),
@@ -186,7 +233,7 @@ mod game {
                     (breakable::start_fractures, spawn::finish_fractures)
                         .chain()
                         .in_set(ShatterSystems::Fracture),
-                    (bonds::break_bonds, bonds::guard)
+                    (bonds::break_bonds, runtime::cut_on_impact, bonds::guard)
                         .chain()
                         .in_set(ShatterSystems::Break),
                 ),

@@ -6,8 +6,11 @@ use bevy::prelude::*;
 use shatter_geom::fracture::Fracture;
 use shatter_sim::breaking::{BondState, Graph};
 
+use shatter_sim::runtime::FractureTiming;
+
 use crate::breakable::{FractureTask, Outcome};
 use crate::components::{Fragment, ShatterBody, ShatterObject};
+use crate::runtime::Cuttable;
 use crate::{Breakable, FractureFailed, Fractured, ShatterSettings, convert};
 use bevy::tasks::{block_on, poll_once};
 
@@ -31,7 +34,19 @@ fn fragment_collider(pieces: &[Vec<glam::DVec3>]) -> Option<Collider> {
     }
 }
 
-/// Replaces `object`'s mesh by the fragments of `fracture`: one body at `pose`.
+/// Whether triangle `t` of fragment `f` is a cut face: marked interior by the fracture,
+/// or carrying the `interior` material (a fragment cut again at runtime keeps its
+/// earlier cut faces as "surface" of the new cut, but their material says what they are).
+fn is_interior(fracture: &Fracture, f: &shatter_geom::fracture::Fragment, t: usize) -> bool {
+    f.interior.get(t).copied().unwrap_or(false)
+        || f.material
+            .get(t)
+            .and_then(|&m| fracture.materials.get(m as usize))
+            .is_some_and(|m| m.name == "interior")
+}
+
+/// Replaces `object`'s mesh by the fragments of `fracture`: one body at `pose`, which is
+/// returned. An object that may be cut at runtime also gets its [`Cuttable`] record.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn spawn_fragments(
     commands: &mut Commands,
@@ -42,7 +57,7 @@ pub(crate) fn spawn_fragments(
     pose: Transform,
     surface: Handle<StandardMaterial>,
     interior: Handle<StandardMaterial>,
-) {
+) -> Entity {
     let m = &breakable.material;
     let fracture = outcome.fracture;
     let n = fracture.fragments.len();
@@ -103,11 +118,12 @@ pub(crate) fn spawn_fragments(
             ChildOf(body),
         ));
         let corners = &frag.corners;
-        if let Some(mesh) = convert::bevy_mesh(&frag.mesh, corners, true, |t| !frag.interior[t]) {
+        let cut = |t| is_interior(&fracture, frag, t);
+        if let Some(mesh) = convert::bevy_mesh(&frag.mesh, corners, true, |t| !cut(t)) {
             e.insert((Mesh3d(meshes.add(mesh)), MeshMaterial3d(surface.clone())));
         }
         let id = e.id();
-        if let Some(mesh) = convert::bevy_mesh(&frag.mesh, corners, false, |t| frag.interior[t]) {
+        if let Some(mesh) = convert::bevy_mesh(&frag.mesh, corners, false, cut) {
             commands.spawn((
                 Mesh3d(meshes.add(mesh)),
                 MeshMaterial3d(interior.clone()),
@@ -120,8 +136,17 @@ pub(crate) fn spawn_fragments(
         entities[i] = id;
     }
     let bonds = fracture.bonds.len();
-    commands
-        .entity(object)
+    let mut entity = commands.entity(object);
+    if breakable.runtime.timing == FractureTiming::OnImpact || breakable.runtime.depth > 1 {
+        entity.insert(Cuttable {
+            breakable: breakable.clone(),
+            strength,
+            surface,
+            interior,
+            uncuttable: Vec::new(),
+        });
+    }
+    entity
         .remove::<(Mesh3d, MeshMaterial3d<StandardMaterial>)>()
         .insert(ShatterObject {
             fracture,
@@ -131,7 +156,10 @@ pub(crate) fn spawn_fragments(
             body_of,
             fragments: entities,
             anchored,
+            level: outcome.level,
+            parent: outcome.parent,
         });
+    body
 }
 
 /// With `anchored`, the fragments at the bottom of the object (their lowest point within
