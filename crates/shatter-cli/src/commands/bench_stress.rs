@@ -26,6 +26,10 @@ pub struct BenchStressArgs {
     /// The conjugate gradients' preconditioner: multigrid or block-jacobi.
     #[arg(long, default_value_t = SolverSettings::default().preconditioner)]
     pub preconditioner: Preconditioner,
+    /// Most iterations per solve (time-slicing): each case is then solved again, as the
+    /// steps of a game would, until it converges, and its milliseconds are per solve.
+    #[arg(long)]
+    pub budget: Option<usize>,
     /// Print one JSON object.
     #[arg(long)]
     pub json: bool,
@@ -38,6 +42,7 @@ pub fn run(args: &BenchStressArgs, ctx: &Context) -> Result<BenchStressReport, C
         max_iterations: args.max_iterations,
         tolerance: args.tolerance,
         preconditioner: args.preconditioner,
+        budget: args.budget,
     };
     let report = stress::run(&options, ctx)?;
     if args.json {
@@ -45,8 +50,15 @@ pub fn run(args: &BenchStressArgs, ctx: &Context) -> Result<BenchStressReport, C
         println!("{json}");
     } else {
         println!(
-            "stress solver ({}), {} nodes, {} bonds, mean of {} runs, one core",
-            report.preconditioner, report.nodes, report.bonds, report.runs
+            "stress solver ({}), {} nodes, {} bonds, mean of {} runs, one core{}",
+            report.preconditioner,
+            report.nodes,
+            report.bonds,
+            report.runs,
+            match args.budget {
+                Some(b) => format!(", at most {b} iterations per solve"),
+                None => String::new(),
+            }
         );
         for (name, t) in [
             ("cold solve", report.cold),
@@ -55,8 +67,13 @@ pub fn run(args: &BenchStressArgs, ctx: &Context) -> Result<BenchStressReport, C
             ("after the hit", report.after_hit),
             ("a bond broken", report.bond_broken),
         ] {
+            let sliced = if args.budget.is_some() {
+                format!(" per solve (max {:.3}), {:.0} solves,", t.max_ms, t.solves)
+            } else {
+                String::new()
+            };
             println!(
-                "  {name:<18} {:>9.3} ms  {:>6.0} iterations  residual {:.1e}{}",
+                "  {name:<18} {:>9.3} ms{sliced}  {:>6.0} iterations  residual {:.1e}{}",
                 t.ms,
                 t.iterations,
                 t.residual,

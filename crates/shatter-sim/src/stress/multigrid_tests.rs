@@ -208,3 +208,78 @@ fn multigrid_and_block_jacobi_give_the_same_stresses_and_multigrid_needs_far_few
         bj_report.iterations
     );
 }
+
+#[test]
+fn a_budgeted_solve_resumes_where_it_stopped_and_judges_a_hit_when_it_has_converged() {
+    let graph = wall(12, 10, 2);
+    let broken = vec![false; graph.bonds().len()];
+    let whole = |budget| {
+        let mut s = StressSolver::new(
+            &graph,
+            SolverSettings {
+                budget,
+                ..SolverSettings::default()
+            },
+        );
+        (s.solve(&graph, &broken, G, &[]), s)
+    };
+    let (free, reference) = whole(None);
+    assert!(free.converged && free.iterations > 6, "{free:?}");
+    // Three iterations per solve: unfinished solves, then the same answer after the same
+    // number of iterations in all (the conjugate gradients resume, not restart).
+    let mut sliced = StressSolver::new(
+        &graph,
+        SolverSettings {
+            budget: Some(3),
+            ..SolverSettings::default()
+        },
+    );
+    let (mut solves, mut iterations) = (0, 0);
+    loop {
+        let r = sliced.solve(&graph, &broken, G, &[]);
+        assert!(r.iterations <= 3, "{r:?}");
+        solves += 1;
+        iterations += r.iterations;
+        if r.converged {
+            break;
+        }
+        assert!(solves < 1000, "never converged");
+    }
+    assert_eq!(iterations, free.iterations);
+    assert_eq!(solves, free.iterations.div_ceil(3));
+    for b in 0..graph.bonds().len() as u32 {
+        let (x, y) = (reference.stress(b), sliced.stress(b));
+        assert!(
+            (x.tension - y.tension).abs() <= 1e-9 * x.tension.max(1.0)
+                && (x.compression - y.compression).abs() <= 1e-9 * x.compression.max(1.0),
+            "bond {b}: {x:?} vs {y:?}"
+        );
+    }
+    // A hit on an upper block: no bond is judged on the unfinished solves; the hit's
+    // forces stay on until they are, and the bond under it is then found overloaded.
+    let top = 12 * 8 + 5;
+    let hit = [(top, DVec3::new(0.0, 0.0, -4.0e6))];
+    let limits = StressLimits {
+        compression: 1e12,
+        tension: 1e12,
+        shear: 1.0e7,
+    };
+    let first = sliced.solve(&graph, &broken, G, &hit);
+    assert!(!first.converged);
+    assert!(sliced.overloaded(&limits).is_empty());
+    let mut judged = Vec::new();
+    for _ in 0..1000 {
+        let r = sliced.solve(&graph, &broken, G, &[]);
+        if r.converged {
+            judged = sliced.overloaded(&limits);
+            break;
+        }
+        assert!(sliced.overloaded(&limits).is_empty());
+    }
+    assert!(!judged.is_empty(), "the hit was never judged");
+    let mut unsliced = StressSolver::new(&graph, SolverSettings::default());
+    unsliced.solve(&graph, &broken, G, &[]);
+    let once = unsliced.solve(&graph, &broken, G, &hit);
+    assert!(once.converged);
+    assert_eq!(judged, unsliced.overloaded(&limits));
+}

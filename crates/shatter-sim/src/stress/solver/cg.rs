@@ -7,9 +7,17 @@ use super::{IslandState, StressSolver};
 use crate::stress::spring::{invert, outer};
 
 impl StressSolver {
-    /// Preconditioned conjugate gradients on island `i`; returns (iterations, relative
-    /// residual, converged) and stores the bond stresses.
-    pub(super) fn solve_island(&mut self, i: usize, forces: &[(u32, DVec3)]) -> (usize, f64, bool) {
+    /// Preconditioned conjugate gradients on island `i` under gravity and `forces` (its
+    /// free nodes'), at most `cap` iterations, resumed from `resume` (`r·z` of the last,
+    /// unfinished run with the same loads) or started from the last solution; stores the
+    /// bond stresses.
+    pub(super) fn solve_island(
+        &mut self,
+        i: usize,
+        forces: &[(u32, DVec3)],
+        cap: usize,
+        resume: Option<f64>,
+    ) -> Outcome {
         let island = std::mem::take(&mut self.islands[i]);
         let free = &island.free;
         for &v in free {
@@ -18,39 +26,50 @@ impl StressSolver {
         // Dynamic forces, balanced by the island's inertia (inertia relief): each free node
         // also takes `−m·a` for the island's mean acceleration `a = ΣF / Σm`, so a short
         // hit stresses the material around it rather than being carried to the anchors.
-        let mut dynamic = Vec::new();
         for &(v, f) in forces {
-            if self.node_island.get(v as usize) == Some(&(i as u32)) && !self.anchored[v as usize] {
-                self.fu[v as usize] += f;
-                dynamic.push((v, f));
-            }
+            self.fu[v as usize] += f;
         }
-        if !dynamic.is_empty() {
-            self.relieve(free, &dynamic);
+        if !forces.is_empty() {
+            self.relieve(free, forces);
         }
         let norm_f = free
             .iter()
             .map(|&v| self.fu[v as usize].length_squared())
             .sum::<f64>()
             .sqrt();
-        // r = f − K·x.
-        self.apply(&island, Operand::X);
-        for &v in free {
-            let v = v as usize;
-            self.ru[v] = self.fu[v] - self.qu[v];
-            self.rt[v] = -self.qt[v];
-        }
         let target = self.settings.tolerance * norm_f;
-        let mut residual = self.norm_r(free);
         let mut iterations = 0;
-        if residual > target {
-            let mut rz = self.precondition(&island);
-            for &v in free {
-                let v = v as usize;
-                self.pu[v] = self.qu[v];
-                self.pt[v] = self.qt[v];
+        let mut stopped = None;
+        let (mut residual, mut rz) = match resume {
+            // r and p are where the last run left them.
+            Some(rz) => (self.norm_r(free), rz),
+            None => {
+                // r = f − K·x.
+                self.apply(&island, Operand::X);
+                for &v in free {
+                    let v = v as usize;
+                    self.ru[v] = self.fu[v] - self.qu[v];
+                    self.rt[v] = -self.qt[v];
+                }
+                let residual = self.norm_r(free);
+                let mut rz = 0.0;
+                if residual > target {
+                    rz = self.precondition(&island);
+                    for &v in free {
+                        let v = v as usize;
+                        self.pu[v] = self.qu[v];
+                        self.pt[v] = self.qt[v];
+                    }
+                }
+                (residual, rz)
             }
-            while iterations < self.settings.max_iterations {
+        };
+        if residual > target {
+            loop {
+                if iterations >= cap {
+                    stopped = Some(rz);
+                    break;
+                }
                 iterations += 1;
                 self.apply(&island, Operand::P);
                 let pq: f64 = free
@@ -94,7 +113,12 @@ impl StressSolver {
         let relative = if norm_f > 0.0 { residual / norm_f } else { 0.0 };
         let converged = residual <= target;
         self.islands[i] = island;
-        (iterations, relative, converged)
+        Outcome {
+            iterations,
+            residual: relative,
+            converged,
+            resume: if converged { None } else { stopped },
+        }
     }
 
     /// Inertia relief: adds `−m·(a + α × (x − c))` to every free node, the d'Alembert
@@ -130,7 +154,7 @@ impl StressSolver {
         }
     }
 
-    /// `q = M⁻¹·r` on the island's free nodes (its multigrid's V-cycle, or block
+    /// `q = M⁻¹·r` on the island's free nodes (its multigrid's W-cycle, or block
     /// Jacobi); returns `r·q`.
     fn precondition(&mut self, island: &IslandState) -> f64 {
         let free = &island.free;
@@ -196,6 +220,16 @@ impl StressSolver {
             self.qt[a] -= s.ra.cross(f) + m;
         }
     }
+}
+
+/// What [`StressSolver::solve_island`] did.
+pub(super) struct Outcome {
+    pub iterations: usize,
+    /// Relative residual.
+    pub residual: f64,
+    pub converged: bool,
+    /// `r·z` to resume from when a limit stopped it.
+    pub resume: Option<f64>,
 }
 
 #[derive(Clone, Copy)]

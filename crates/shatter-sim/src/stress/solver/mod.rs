@@ -42,6 +42,14 @@ pub struct SolverSettings {
     /// Most conjugate-gradient iterations per island per [`StressSolver::solve`]; an island
     /// that needs more goes on from where it stopped at the next solve.
     pub max_iterations: usize,
+    /// Most conjugate-gradient iterations per [`StressSolver::solve`], summed over the
+    /// islands (`None`: no limit): time-slicing, as Blast's stress solver does, so a
+    /// large graph costs a bounded time per step. An island left unfinished goes on at
+    /// the next solve: its conjugate gradients resume where they stopped while its loads
+    /// are unchanged, and a hit's forces stay on it until its solve has converged, so
+    /// the hit is judged (a few steps late) rather than lost. No bond breaks on an
+    /// unfinished solve.
+    pub budget: Option<usize>,
     /// Shear over normal stiffness, `G/E`.
     pub shear_ratio: f64,
     /// How the conjugate gradients are preconditioned.
@@ -51,7 +59,7 @@ pub struct SolverSettings {
 /// The preconditioner of the stress solver's conjugate gradients.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Preconditioner {
-    /// Rigid-group aggregation multigrid, one V-cycle (see `stress/multigrid.rs`): a few
+    /// Rigid-group aggregation multigrid, one W-cycle (see `stress/multigrid.rs`): a few
     /// dozen iterations where block Jacobi needs thousands.
     #[default]
     Multigrid,
@@ -100,6 +108,7 @@ impl Default for SolverSettings {
         SolverSettings {
             tolerance: 1e-5,
             max_iterations: 1000,
+            budget: None,
             shear_ratio: 0.4,
             preconditioner: Preconditioner::Multigrid,
         }
@@ -119,6 +128,8 @@ pub struct SolveReport {
     pub converged: bool,
     /// Largest relative residual of the islands solved.
     pub residual: f64,
+    /// Anchored islands left for a later solve because the budget was spent.
+    pub islands_deferred: usize,
 }
 
 /// An anchored island being solved.
@@ -134,6 +145,11 @@ struct IslandState {
     dynamic: bool,
     /// Converged at its last solve.
     converged: bool,
+    /// Dynamic forces of an unfinished solve, kept until it converges.
+    carry: Vec<(u32, DVec3)>,
+    /// `r·z` of conjugate gradients stopped by a limit with the loads unchanged since:
+    /// the next solve resumes them (residual and direction are in the solver's vectors).
+    resume: Option<f64>,
     /// Its multigrid preconditioner (with [`Preconditioner::Multigrid`]).
     multigrid: Option<Multigrid>,
 }
@@ -271,36 +287,62 @@ impl StressSolver {
         }
         if gravity != self.gravity {
             self.gravity = gravity;
-            self.islands.iter_mut().for_each(|i| i.settled = false);
+            self.islands.iter_mut().for_each(|i| {
+                i.settled = false;
+                i.resume = None;
+            });
         }
-        let mut loaded = vec![false; self.islands.len()];
-        for &(node, _) in forces {
+        // This solve's forces, per island.
+        let mut by_island: Vec<Vec<(u32, DVec3)>> = vec![Vec::new(); self.islands.len()];
+        for &(node, f) in forces {
             if let Some(&i) = self.node_island.get(node as usize)
                 && i != u32::MAX
+                && !self.anchored[node as usize]
             {
-                loaded[i as usize] = true;
+                by_island[i as usize].push((node, f));
             }
         }
         let mut report = SolveReport {
             converged: true,
             ..SolveReport::default()
         };
+        let mut budget = self.settings.budget.unwrap_or(usize::MAX);
         self.last_solved.clear();
-        for (i, &loaded) in loaded.iter().enumerate() {
-            let island = &self.islands[i];
-            if island.settled && !island.dynamic && !loaded {
+        for (i, mut loads) in by_island.into_iter().enumerate() {
+            let island = &mut self.islands[i];
+            let fresh = !loads.is_empty();
+            if island.settled && !island.dynamic && !fresh && island.carry.is_empty() {
                 report.islands_skipped += 1;
                 continue;
             }
-            let (iterations, residual, converged) = self.solve_island(i, forces);
+            if budget == 0 {
+                // Not solved this time: still owed, with any new forces kept for it.
+                island.carry.append(&mut loads);
+                if fresh {
+                    island.resume = None;
+                }
+                island.settled = false;
+                report.islands_deferred += 1;
+                report.converged = false;
+                continue;
+            }
+            let resume = if fresh { None } else { island.resume.take() };
+            loads.append(&mut island.carry);
+            let cap = self.settings.max_iterations.min(budget);
+            let outcome = self.solve_island(i, &loads, cap, resume);
+            budget = budget.saturating_sub(outcome.iterations);
             let island = &mut self.islands[i];
-            island.dynamic = loaded;
-            island.converged = converged;
-            island.settled = converged && !loaded;
+            island.dynamic = !loads.is_empty();
+            island.converged = outcome.converged;
+            island.settled = outcome.converged && loads.is_empty();
+            island.resume = outcome.resume;
+            if !outcome.converged {
+                island.carry = loads;
+            }
             report.islands_solved += 1;
-            report.iterations += iterations;
-            report.residual = report.residual.max(residual);
-            report.converged &= converged;
+            report.iterations += outcome.iterations;
+            report.residual = report.residual.max(outcome.residual);
+            report.converged &= outcome.converged;
             self.last_solved.push(i as u32);
         }
         report
