@@ -182,3 +182,43 @@ fn roughness_keys_make_cut_faces_rough_or_flat() {
     assert_eq!(b.material.roughness.amplitude, f64::from(0.03f32));
     assert_eq!(b.material.roughness.octaves, 5);
 }
+
+#[test]
+fn a_mesh_projectile_is_centred_and_its_largest_extent_is_its_size() {
+    // A tetrahedron 4 m along x and 2 m along y and z, far from the origin.
+    let dir = std::env::temp_dir().join(format!("shatter-mesh-shot-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let tet =
+        "v 10 10 10\nv 14 10 10\nv 10 12 10\nv 10 10 12\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    std::fs::write(dir.join("rock.obj"), tet).unwrap();
+    let scene_path = dir.join("shot.toml");
+    std::fs::write(
+        &scene_path,
+        "[[projectiles]]\nmesh = \"rock.obj\"\nsize = 0.5\nfrom = [0, 1, 5]\nto = [0, 1, 0]\n",
+    )
+    .unwrap();
+    let scene = Scene::load(&scene_path).unwrap();
+    let shatter_sim::ProjectileShape::Custom(points) = &scene.projectiles[0].1.shape else {
+        panic!("a custom shape: {:?}", scene.projectiles[0].1.shape);
+    };
+    let (lo, hi) = points.iter().fold(
+        (
+            shatter_geom::DVec3::splat(f64::MAX),
+            shatter_geom::DVec3::splat(f64::MIN),
+        ),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    assert!(((hi - lo).max_element() - 1.0).abs() < 1e-12, "{lo} {hi}");
+    assert!(((lo + hi) * 0.5).length() < 1e-12, "centred: {lo} {hi}");
+    assert_eq!(scene.projectiles[0].1.size, 0.5);
+    // A mesh without extent is refused, naming the key.
+    std::fs::write(dir.join("dot.obj"), "v 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3\n").unwrap();
+    std::fs::write(
+        &scene_path,
+        "[[projectiles]]\nmesh = \"dot.obj\"\nfrom = [0, 1, 5]\nto = [0, 1, 0]\n",
+    )
+    .unwrap();
+    let e = Scene::load(&scene_path).unwrap_err().to_string();
+    assert!(e.contains("projectiles[0]"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

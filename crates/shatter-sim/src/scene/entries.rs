@@ -233,7 +233,13 @@ pub(super) fn projectile(
         (_, Some(m)) => {
             let path = ctx.path(m);
             let mesh = shatter_geom::io::load_mesh(&path).map_err(|e| SimError::mesh(&path, e))?;
-            ProjectileShape::Custom(mesh.positions)
+            // As the Fire panel makes it: centred, its largest extent `size` metres.
+            ProjectileShape::from_mesh(&mesh).ok_or_else(|| {
+                SimError::invalid(
+                    format!("{key}.mesh"),
+                    format!("{path} has no extent to scale to `size`"),
+                )
+            })?
         }
         (Some(s), None) => {
             ProjectileShape::from_name(s.get_ref()).ok_or_else(|| SimError::UnknownShape {
