@@ -135,7 +135,8 @@ fn fracture_tagged(
 ) -> Result<(Fracture, Vec<Vec<u64>>), FractureError> {
     mesh.validate_indices()?;
     let frame = Frame::of(mesh);
-    let (piece, warnings) = validated_piece(&frame.mesh_to_local(mesh))?;
+    let (piece, warnings) =
+        validated_piece(&frame.mesh_to_local(mesh), mesh.is_fracture_fragment())?;
     // Refuse before the work when the whole mesh's own quantities are beyond f64.
     check_cancellation(&piece.pos, &piece.tris)?;
     let (volume, _, inertia) = mass_properties(&piece.pos, &piece.tris);
@@ -155,7 +156,11 @@ fn fracture_tagged(
     if !partial || frame.is_per_axis() {
         check_volume_sum(&local, volume)?;
     }
-    Ok((frame.fracture_to_world(local)?, tags))
+    let mut result = frame.fracture_to_world(local)?;
+    for f in &mut result.fragments {
+        f.mesh.mark_solid();
+    }
+    Ok((result, tags))
 }
 
 /// The parameters with the user's points and planes in the local frame.

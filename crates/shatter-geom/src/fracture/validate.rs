@@ -6,11 +6,16 @@ use super::params::FractureError;
 use crate::TriMesh;
 use crate::mesh::MeshError;
 
-/// Checks `mesh` and returns its welded working piece, outward, plus warnings.
-pub(crate) fn validated_piece(mesh: &TriMesh) -> Result<(Piece, Vec<String>), FractureError> {
+/// Checks `mesh` and returns its welded working piece, outward, plus warnings. With
+/// `fragment` (the input is a fragment the fracture made, unchanged:
+/// [`TriMesh::is_fracture_fragment`]) the self-intersection search is skipped.
+pub(crate) fn validated_piece(
+    mesh: &TriMesh,
+    fragment: bool,
+) -> Result<(Piece, Vec<String>), FractureError> {
     let mut warnings = Vec::new();
     let mut flip = false;
-    match mesh.validate_solid() {
+    match mesh.validate_solid_with(!fragment) {
         Ok(()) => {}
         Err(MeshError::Inward { volume }) => {
             flip = true;

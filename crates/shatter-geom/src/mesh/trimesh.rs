@@ -31,6 +31,33 @@ pub struct TriMesh {
     pub positions: Vec<DVec3>,
     /// Triangles as three indices into `positions`.
     pub triangles: Vec<[u32; 3]>,
+    /// Set on a fragment the fracture made (see [`SolidMark`]); never serialised, not
+    /// compared.
+    #[serde(skip)]
+    solid: SolidMark,
+}
+
+/// The fracture's note on a fragment mesh it made: the fingerprint of its positions and
+/// triangles as they were made. A fragment is cut exactly from a solid that passed
+/// [`TriMesh::validate_solid`], so it cannot cross itself; a fracture of it skips the
+/// exact self-intersection search (the costliest check) while the mesh is unchanged —
+/// any change to `positions` or `triangles` changes the fingerprint, and the mesh is
+/// then checked in full. A mesh from anywhere else (built by hand, read from a file,
+/// deserialised) has no mark.
+#[derive(Clone, Copy, Default)]
+struct SolidMark(Option<u64>);
+
+impl PartialEq for SolidMark {
+    /// Always equal: the mark is a cache of a check, not part of the mesh.
+    fn eq(&self, _: &SolidMark) -> bool {
+        true
+    }
+}
+
+impl std::fmt::Debug for SolidMark {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(if self.0.is_some() { "marked" } else { "-" })
+    }
 }
 
 impl TriMesh {
@@ -39,7 +66,54 @@ impl TriMesh {
         Self {
             positions,
             triangles,
+            solid: SolidMark::default(),
         }
+    }
+
+    /// Marks the mesh as a fragment the fracture made (see [`SolidMark`]).
+    pub(crate) fn mark_solid(&mut self) {
+        self.solid = SolidMark(Some(self.fingerprint()));
+    }
+
+    /// Whether the fracture made this mesh as it is now (see [`SolidMark`]): `false` for
+    /// any mesh built or read elsewhere, and for a fragment changed since.
+    ///
+    /// ```
+    /// use shatter_geom::fracture::{fracture, FractureParams, Method, Seeds};
+    /// use shatter_geom::{shapes, DVec3};
+    ///
+    /// assert!(!shapes::cube().is_fracture_fragment());
+    /// let params = FractureParams { method: Method::Voronoi { seeds: Seeds::count(4) }, seed: 1 };
+    /// let mut mesh = fracture(&shapes::cube(), &params)?.fragments[0].mesh.clone();
+    /// assert!(mesh.is_fracture_fragment());
+    /// mesh.positions[0] += DVec3::X;
+    /// assert!(!mesh.is_fracture_fragment());
+    /// # Ok::<(), shatter_geom::fracture::FractureError>(())
+    /// ```
+    pub fn is_fracture_fragment(&self) -> bool {
+        self.solid.0.is_some_and(|f| f == self.fingerprint())
+    }
+
+    /// A 64-bit fingerprint of the positions' bits and the triangles (a multiply-fold
+    /// hash, as in wyhash: any change alters it but by a 2⁻⁶⁴ chance).
+    fn fingerprint(&self) -> u64 {
+        const K0: u64 = 0xa076_1d64_78bd_642f;
+        const K1: u64 = 0xe703_7ed1_a0b4_28db;
+        let step = |h: u64, w: u64| {
+            let r = u128::from(h ^ K0) * u128::from(w ^ K1);
+            ((r as u64) ^ ((r >> 64) as u64)).wrapping_add(h.rotate_left(23))
+        };
+        let mut h = step(self.positions.len() as u64, self.triangles.len() as u64);
+        for p in &self.positions {
+            h = step(h, p.x.to_bits());
+            h = step(h, p.y.to_bits());
+            h = step(h, p.z.to_bits());
+        }
+        for t in &self.triangles {
+            h = step(h, u64::from(t[0]) | (u64::from(t[1]) << 32));
+            h = step(h, u64::from(t[2]));
+        }
+        h
     }
 
     /// The three corner positions of triangle `t`.

@@ -94,12 +94,19 @@ impl TriMesh {
     /// keep the sign of every exact predicate), so the answer is the same as at unit
     /// size.
     pub fn validate_solid(&self) -> Result<(), MeshError> {
+        self.validate_solid_with(true)
+    }
+
+    /// [`validate_solid`](TriMesh::validate_solid), without the self-intersection search
+    /// unless `crossings` (for a fragment the fracture cut exactly from a checked solid,
+    /// which cannot cross itself: see [`TriMesh::is_fracture_fragment`]).
+    pub(crate) fn validate_solid_with(&self, crossings: bool) -> Result<(), MeshError> {
         self.validate_indices()?;
         let frame = Frame::of(self);
         if frame.is_plain() {
-            return self.validate_solid_here();
+            return self.validate_solid_here(crossings);
         }
-        match frame.mesh_to_local(self).validate_solid_here() {
+        match frame.mesh_to_local(self).validate_solid_here(crossings) {
             Err(MeshError::Inward { volume }) => Err(MeshError::Inward {
                 volume: ldexp(volume, frame.volume_exp2()),
             }),
@@ -109,10 +116,19 @@ impl TriMesh {
 
     /// [`validate_solid`](TriMesh::validate_solid) on the coordinates as they are
     /// (indices already checked).
-    fn validate_solid_here(&self) -> Result<(), MeshError> {
+    fn validate_solid_here(&self, crossings: bool) -> Result<(), MeshError> {
         // The topology and the self-intersection search are independent, so they run at
         // once (rayon); a topology error still comes first.
-        let (r, crossing) = rayon::join(|| self.check(), || self.self_intersections(usize::MAX));
+        let (r, crossing) = rayon::join(
+            || self.check(),
+            || {
+                if crossings {
+                    self.self_intersections(usize::MAX)
+                } else {
+                    Vec::new()
+                }
+            },
+        );
         if r.boundary_edges > 0 {
             return Err(MeshError::BoundaryEdges(r.boundary_edges));
         }

@@ -5,8 +5,8 @@ use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
 use super::inside::InsideSampler;
-use crate::fracture::Pattern;
 use crate::fracture::kernel::Piece;
+use crate::fracture::{Pattern, SLIVER_VOLUME_FRACTION};
 
 /// A standard normal deviate (Box–Muller).
 pub(crate) fn gaussian(rng: &mut ChaCha8Rng) -> f64 {
@@ -65,24 +65,56 @@ pub(crate) fn seeds(
                 }
             });
             // The spread follows the object's extents, so thin objects (panes) keep their
-            // seeds inside instead of losing most draws above and below.
+            // seeds inside instead of losing most draws above and below. Distances below
+            // are measured in that frame (each axis over its extent).
             let extent = hi - lo;
-            (0..k)
-                .map(|_| {
-                    let p = sampler.inside_from(rng, |r| {
-                        // Radius ∝ u³: density falls off with distance from the impact.
-                        let u: f64 = r.random();
-                        centre + unit_vector(r) * extent * (u * u * u)
-                    });
-                    if sampler.contains(p) {
-                        p
-                    } else {
-                        sampler.uniform(rng)
+            let unit = extent.max(DVec3::splat(f64::MIN_POSITIVE));
+            let spacing = radial_spacing(piece.volume(), extent);
+            let mut out: Vec<DVec3> = Vec::with_capacity(k);
+            for _ in 0..k {
+                let mut placed = None;
+                for _ in 0..RADIAL_TRIES {
+                    // Radius ∝ u³: density falls off with distance from the impact.
+                    let u: f64 = rng.random();
+                    let p = centre + unit_vector(rng) * extent * (u * u * u);
+                    // A seed is kept at a distance from the others that grows with its
+                    // distance from the impact (a fifth of it), and is at least `spacing`:
+                    // the u³ law alone puts seeds within 1e-5 of the extent of each
+                    // other near the impact, whose cells (down to 1e-15 of the volume)
+                    // are only merged away again, so 50 seeds made 26 fragments.
+                    // (Checked before the inside test, which costs more.)
+                    let q = (p - centre) / unit;
+                    let min = (0.2 * q.length()).max(spacing);
+                    let clear = out
+                        .iter()
+                        .all(|&o| ((o - p) / unit).length_squared() >= min * min);
+                    if clear && sampler.contains(p) {
+                        placed = Some(p);
+                        break;
                     }
-                })
-                .collect()
+                }
+                out.push(placed.unwrap_or_else(|| sampler.uniform(rng)));
+            }
+            out
         }
     }
+}
+
+/// Draws per radial seed before it is placed anywhere inside.
+const RADIAL_TRIES: usize = 400;
+
+/// The least distance between radial seeds, as a fraction of the extents: twice the
+/// radius of a ball whose volume is four times the sliver threshold (a ten-thousandth of
+/// the solid, [`SLIVER_VOLUME_FRACTION`]), in the frame of the extents, so that a cell at
+/// the impact, a fraction of such a ball inside the solid, is still about as big as the
+/// sliver threshold. (The bird's bounding box is about four times its volume: 0.06.)
+fn radial_spacing(volume: f64, extent: DVec3) -> f64 {
+    let boxed = extent.x * extent.y * extent.z;
+    if !(boxed > 0.0 && volume > 0.0) {
+        return 0.0;
+    }
+    let ball = 4.0 * SLIVER_VOLUME_FRACTION * (volume / boxed).min(1.0);
+    2.0 * (ball * 3.0 / (4.0 * std::f64::consts::PI)).cbrt()
 }
 
 /// The metric weights of [`Pattern::Splinter`] for a solid of box extents `e` (in the
