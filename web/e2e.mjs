@@ -6,6 +6,9 @@
 // Serves the static site (web/dist, or $SHATTER_WEB_DIST) on 127.0.0.1,
 // opens it in headless Chromium (/usr/bin/chromium, software WebGL2 via
 // SwiftShader) and checks the app's console contract:
+//   0. every file has a .gz and a .br copy that decodes to it, served with
+//      Content-Encoding when the browser accepts it (the summary's sizes and
+//      served_encodings);
 //   1. a `SHATTER_STATE {json}` line with frames > 0 (first frame rendered);
 //   2. after Enter on the focused canvas: running == true;
 //   3. after left clicks on the wall (~640,380): bonds_broken > 0 (screenshot
@@ -116,6 +119,7 @@ const pageErrors = []; // uncaught errors other than Bevy's control-flow one
 const ignoredErrors = [];
 const httpErrors = [];
 const served = {}; // url path -> bytes sent
+const encodings = {}; // url path -> Content-Encoding served
 const failures = [];
 const timings = {};
 let fatal = null; // set on an uncaught page error / crash: aborts the waits
@@ -220,17 +224,32 @@ function startServer(root) {
         return;
       }
       const type = MIME[path.extname(file).toLowerCase()] || 'application/octet-stream';
-      res.writeHead(200, {
-        'Content-Type': type,
-        'Content-Length': st.size,
-        'Cache-Control': 'no-store',
-      });
+      // Serve the build's precompressed copy when the browser takes it, as a static
+      // server configured per web/README.md does: brotli first, then gzip.
+      const accepts = String(req.headers['accept-encoding'] || '');
+      let body = file;
+      let size = st.size;
+      const headers = { 'Content-Type': type, 'Cache-Control': 'no-store', Vary: 'Accept-Encoding' };
+      for (const [enc, ext] of [['br', '.br'], ['gzip', '.gz']]) {
+        if (!accepts.includes(enc)) continue;
+        try {
+          size = fs.statSync(file + ext).size;
+          body = file + ext;
+          headers['Content-Encoding'] = enc;
+          break;
+        } catch {
+          /* no such copy */
+        }
+      }
+      headers['Content-Length'] = size;
+      res.writeHead(200, headers);
       if (req.method === 'HEAD') {
         res.end();
         return;
       }
-      served[urlPath] = (served[urlPath] || 0) + st.size;
-      fs.createReadStream(file).pipe(res);
+      served[urlPath] = (served[urlPath] || 0) + size;
+      if (headers['Content-Encoding']) encodings[urlPath] = headers['Content-Encoding'];
+      fs.createReadStream(body).pipe(res);
     });
   });
   server.keepAliveTimeout = 1000;
@@ -253,18 +272,31 @@ function sizes() {
   out.index_html_bytes = size('index.html');
   out.js_bytes = size('shatter_app.js');
   out.wasm_bytes = size('shatter_app_bg.wasm');
-  try {
-    const wasm = fs.readFileSync(path.join(DIST, 'shatter_app_bg.wasm'));
-    out.wasm_gzip_bytes = zlib.gzipSync(wasm, { level: 9 }).length;
-  } catch {
-    out.wasm_gzip_bytes = null;
+  // The build's precompressed copies: their sizes, and whether each one decodes to
+  // exactly the file beside it (a stale or broken copy would be served to browsers).
+  out.precompressed = {};
+  for (const f of ['index.html', 'shatter_app.js', 'shatter_app_bg.wasm']) {
+    let plain;
+    try {
+      plain = fs.readFileSync(path.join(DIST, f));
+    } catch {
+      continue;
+    }
+    const entry = {};
+    for (const [ext, decode] of [['.gz', zlib.gunzipSync], ['.br', zlib.brotliDecompressSync]]) {
+      try {
+        const packed = fs.readFileSync(path.join(DIST, f + ext));
+        entry[ext.slice(1) + '_bytes'] = packed.length;
+        entry[ext.slice(1) + '_matches'] = Buffer.compare(decode(packed), plain) === 0;
+      } catch (e) {
+        entry[ext.slice(1) + '_bytes'] = null;
+        entry[ext.slice(1) + '_matches'] = false;
+      }
+    }
+    out.precompressed[f] = entry;
   }
-  try {
-    const js = fs.readFileSync(path.join(DIST, 'shatter_app.js'));
-    out.js_gzip_bytes = zlib.gzipSync(js, { level: 9 }).length;
-  } catch {
-    out.js_gzip_bytes = null;
-  }
+  out.wasm_gzip_bytes = out.precompressed['shatter_app_bg.wasm']?.gz_bytes ?? null;
+  out.wasm_br_bytes = out.precompressed['shatter_app_bg.wasm']?.br_bytes ?? null;
   return out;
 }
 
@@ -372,6 +404,13 @@ async function finish(ok, extra = {}) {
   } catch {
     /* page gone */
   }
+  const sizeReport = sizes();
+  for (const [f, e] of Object.entries(sizeReport.precompressed)) {
+    if (ok && !(e.gz_matches && e.br_matches)) {
+      ok = false;
+      failures.push(`${f}: its .gz or .br copy is missing or does not decode to it`);
+    }
+  }
   const summary = {
     ok,
     failures,
@@ -380,8 +419,9 @@ async function finish(ok, extra = {}) {
     timings_ms: timings,
     final_state: states.length ? states[states.length - 1] : null,
     states_seen: states.length,
-    sizes: sizes(),
+    sizes: sizeReport,
     served_bytes: served,
+    served_encodings: encodings,
     page_errors: pageErrors,
     ignored_errors: ignoredErrors.length,
     http_errors: httpErrors,

@@ -51,16 +51,6 @@ pub(crate) struct PendingHit {
     pub other_mass: f32,
 }
 
-/// The seed of the cut of fragment `fragment` at `level` of a line of cuts seeded `seed`
-/// (the same mix as shatter's world, so a line's cuts are reproducible).
-pub(crate) fn cut_seed(seed: u64, fragment: u32, level: u32) -> u64 {
-    let mut h = seed ^ 0x9e37_79b9_7f4a_7c15;
-    for v in [u64::from(fragment), u64::from(level)] {
-        h = (h ^ v).wrapping_mul(0x0100_0000_01b3).rotate_left(17);
-    }
-    h
-}
-
 /// A hit that asks for a cut.
 struct Request {
     object: Entity,
@@ -213,7 +203,7 @@ fn cut(
     let level = object.level;
     // Bodies carry the object's frame (fragments sit at the identity under them).
     let local = transform.rotation.inverse() * (request.point - transform.translation);
-    let seed = cut_seed(cuttable.breakable.seed, f, level);
+    let seed = shatter_sim::runtime::cut_seed(cuttable.breakable.seed, f, level);
     let fracture = runtime::cut_at(
         &runtime::fragment_model(&object.fracture, f as usize),
         from_bevy(local).as_dvec3(),

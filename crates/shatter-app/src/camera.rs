@@ -5,6 +5,7 @@
 //! - wheel: zoom;
 //! - W/A/S/D: fly forward/left/back/right, Q/E: down/up (Shift: faster).
 
+use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseScrollUnit};
 use bevy::prelude::*;
 use bevy_egui::input::EguiWantsInput;
@@ -88,7 +89,15 @@ impl Plugin for CameraPlugin {
     fn build(&self, app: &mut App) {
         let start = self.start;
         app.add_systems(Startup, move |mut commands: Commands| {
-            commands.spawn((Camera3d::default(), start.transform(), start));
+            commands.spawn((
+                Camera3d::default(),
+                // Khronos PBR Neutral: an asset's base colours come out as its author
+                // painted them (TonyMcMapface, Bevy's default, desaturates them), and it
+                // needs no lookup table, so neither build ships Bevy's `tonemapping_luts`.
+                Tonemapping::KhronosPbrNeutral,
+                start.transform(),
+                start,
+            ));
         })
         .add_systems(Update, (control_camera, software_renderer_without_msaa));
     }

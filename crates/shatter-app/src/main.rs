@@ -14,6 +14,7 @@ use bevy::prelude::*;
 use bevy::window::{PresentMode, WindowResolution};
 use shatter_app::ShatterAppPlugin;
 use shatter_app::sim_bridge::{SandboxWorld, ShatterWorld};
+use shatter_app::sim_plugin::OpenAfterFirstFrame;
 
 const USAGE: &str = "usage: shatter-app [--autotest DIR] [--scene NAME]";
 
@@ -125,23 +126,23 @@ fn main() -> ExitCode {
         primary_window: Some(window),
         ..default()
     }));
-    if let Some(name) = scene.or_else(page_scene) {
+    if cfg!(target_arch = "wasm32") {
+        // The page draws its first frame on an empty world and opens the scene (the
+        // address's `?scene=`, else the default) right after it: downloading and starting
+        // the wasm is all the first frame waits for, not the scene's fracture.
+        app.insert_resource(ShatterWorld::sandbox(shatter_sim::World::new(
+            Default::default(),
+        )))
+        .insert_resource(OpenAfterFirstFrame(
+            page_scene().unwrap_or_else(|| "default".to_owned()),
+        ));
+    } else if let Some(name) = scene {
         let mut world = ShatterWorld::sandbox(shatter_sim::World::new(Default::default()));
-        match world.load_example(&name) {
-            Ok(()) => {
-                app.insert_resource(world);
-            }
-            Err(e) => {
-                // A bad name on the command line is refused; in the page, the default
-                // scene opens and the console says why.
-                if cfg!(target_arch = "wasm32") {
-                    error!("scene={name}: {e}");
-                } else {
-                    eprintln!("--scene {name}: {e}");
-                    return ExitCode::from(2);
-                }
-            }
+        if let Err(e) = world.load_example(&name) {
+            eprintln!("--scene {name}: {e}");
+            return ExitCode::from(2);
         }
+        app.insert_resource(world);
     }
     let exit = app
         .add_plugins(ShatterAppPlugin {

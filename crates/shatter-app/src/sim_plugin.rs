@@ -13,6 +13,13 @@ use crate::ui::{PendingCommands, UiState};
 #[derive(Debug, Default)]
 pub struct SimPlugin;
 
+/// An example scene ([`crate::sim_bridge::EXAMPLE_SCENES`]) to open once the first frame
+/// has been drawn, into the (empty) world the app started with. The web page starts this
+/// way, so its first frame does not wait for the scene's fracture. A name that is not an
+/// example is logged and the default scene opens.
+#[derive(Resource, Debug, Clone, PartialEq, Eq)]
+pub struct OpenAfterFirstFrame(pub String);
+
 impl Plugin for SimPlugin {
     fn build(&self, app: &mut App) {
         if !app.world().contains_resource::<ShatterWorld>() {
@@ -21,10 +28,31 @@ impl Plugin for SimPlugin {
         app.add_plugins(ShatterWorldPlugin).add_systems(
             Update,
             (
+                open_after_first_frame.before(apply_commands),
                 apply_commands.before(ShatterWorldSystems::Step),
                 report_events.after(ShatterWorldSystems::Step),
             ),
         );
+    }
+}
+
+/// Open the [`OpenAfterFirstFrame`] scene, once a frame has been drawn.
+fn open_after_first_frame(
+    mut commands: Commands,
+    pending: Option<Res<OpenAfterFirstFrame>>,
+    rate: Res<crate::ui::FrameRate>,
+    mut world: ResMut<ShatterWorld>,
+) {
+    let Some(pending) = pending else { return };
+    if rate.frames == 0 {
+        return;
+    }
+    commands.remove_resource::<OpenAfterFirstFrame>();
+    if let Err(e) = world.load_example(&pending.0) {
+        error!("scene={}: {e}", pending.0);
+        if let Err(e) = world.load_example("default") {
+            error!("default scene: {e}");
+        }
     }
 }
 

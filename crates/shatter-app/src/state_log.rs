@@ -9,7 +9,8 @@ use crate::render::RenderStats;
 use crate::sim_bridge::ShatterWorld;
 use crate::ui::FrameRate;
 
-/// Logs `SHATTER_STATE {json}` every `period_secs` seconds of wall-clock time.
+/// Logs `SHATTER_STATE {json}` at the first frame drawn, then every `period_secs` seconds
+/// of wall-clock time (the web page times its first frame by the first line).
 #[derive(Debug, Clone)]
 pub struct StateLogPlugin {
     /// Seconds between lines.
@@ -23,14 +24,14 @@ impl Default for StateLogPlugin {
 }
 
 #[derive(Resource)]
-struct StateLogTimer(Timer);
+struct StateLogTimer(Timer, bool);
 
 impl Plugin for StateLogPlugin {
     fn build(&self, app: &mut App) {
-        app.insert_resource(StateLogTimer(Timer::from_seconds(
-            self.period_secs,
-            TimerMode::Repeating,
-        )))
+        app.insert_resource(StateLogTimer(
+            Timer::from_seconds(self.period_secs, TimerMode::Repeating),
+            false,
+        ))
         .add_systems(Last, log_state);
     }
 }
@@ -59,7 +60,9 @@ fn log_state(
     rate: Res<FrameRate>,
     render: Option<Res<RenderStats>>,
 ) {
-    if timer.0.tick(time.delta()).just_finished() {
+    let first = !timer.1 && rate.frames > 0;
+    if timer.0.tick(time.delta()).just_finished() || first {
+        timer.1 = true;
         let textured = render.map_or(0, |r| r.textured_materials);
         info!("{}", state_line_with(&bridge, rate.frames, textured));
     }

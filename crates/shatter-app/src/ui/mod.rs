@@ -1,6 +1,7 @@
 //! The panels: state, validation and drawing.
 
 pub mod fields;
+pub mod fonts;
 pub mod forms;
 pub mod panels;
 pub mod plugin;

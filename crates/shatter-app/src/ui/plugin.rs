@@ -50,6 +50,7 @@ fn measure_frame_rate(time: Res<Time>, mut rate: ResMut<FrameRate>) {
 }
 
 fn draw_ui(
+    mut fonts_set: Local<bool>,
     mut contexts: EguiContexts,
     mut ui_state: ResMut<UiState>,
     mut pending: ResMut<PendingCommands>,
@@ -57,6 +58,11 @@ fn draw_ui(
     rate: Res<FrameRate>,
 ) -> Result {
     let ctx = contexts.ctx_mut()?;
+    if !*fonts_set {
+        // Takes effect from the next pass; the first frame draws no text.
+        ctx.set_fonts(crate::ui::fonts::panel_fonts());
+        *fonts_set = true;
+    }
     let stats = bridge.stats();
     let cmds = draw_panels(ctx, &mut ui_state, &stats, rate.fps);
     pending.0.extend(cmds);

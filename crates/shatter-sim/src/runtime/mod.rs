@@ -30,6 +30,25 @@ use shatter_geom::model::Model;
 
 use crate::error::SimError;
 
+/// The seed of a runtime cut: the seed of the object's line of cuts mixed with which
+/// fragment and level it cuts (not with object ids, which a reset does not repeat), so
+/// every cut differs and a run repeats. The World and bevy_shatter both seed their cuts
+/// with it.
+///
+/// ```
+/// use shatter_sim::runtime::cut_seed;
+/// assert_eq!(cut_seed(7, 3, 1), cut_seed(7, 3, 1));
+/// assert_ne!(cut_seed(7, 3, 1), cut_seed(7, 3, 2));
+/// assert_ne!(cut_seed(7, 3, 1), cut_seed(7, 4, 1));
+/// ```
+pub fn cut_seed(seed: u64, fragment: u32, level: u32) -> u64 {
+    let mut h = seed ^ 0x9e37_79b9_7f4a_7c15;
+    for v in [u64::from(fragment), u64::from(level)] {
+        h = (h ^ v).wrapping_mul(0x0100_0000_01b3).rotate_left(17);
+    }
+    h
+}
+
 shatter_geom::vocabulary! {
     /// When a breakable object is cut into fragments.
     ///

@@ -99,14 +99,3 @@ impl std::fmt::Debug for PendingCut {
             .finish_non_exhaustive()
     }
 }
-
-/// The seed of a cut: the seed of the object's line mixed with which fragment and level it
-/// cuts (not with object ids, which a reset does not repeat), so every cut differs and a
-/// run repeats.
-pub(crate) fn cut_seed(seed: u64, fragment: u32, level: u32) -> u64 {
-    let mut h = seed ^ 0x9e37_79b9_7f4a_7c15;
-    for v in [u64::from(fragment), u64::from(level)] {
-        h = (h ^ v).wrapping_mul(0x0100_0000_01b3).rotate_left(17);
-    }
-    h
-}
