@@ -406,7 +406,7 @@ async function finish(ok, extra = {}) {
   }
   const sizeReport = sizes();
   for (const [f, e] of Object.entries(sizeReport.precompressed)) {
-    if (ok && !(e.gz_matches && e.br_matches)) {
+    if (!(e.gz_matches && e.br_matches)) {
       ok = false;
       failures.push(`${f}: its .gz or .br copy is missing or does not decode to it`);
     }

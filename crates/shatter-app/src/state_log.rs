@@ -24,14 +24,14 @@ impl Default for StateLogPlugin {
 }
 
 #[derive(Resource)]
-struct StateLogTimer(Timer, bool);
+struct StateLogTimer(Timer);
 
 impl Plugin for StateLogPlugin {
     fn build(&self, app: &mut App) {
-        app.insert_resource(StateLogTimer(
-            Timer::from_seconds(self.period_secs, TimerMode::Repeating),
-            false,
-        ))
+        app.insert_resource(StateLogTimer(Timer::from_seconds(
+            self.period_secs,
+            TimerMode::Repeating,
+        )))
         .add_systems(Last, log_state);
     }
 }
@@ -60,9 +60,9 @@ fn log_state(
     rate: Res<FrameRate>,
     render: Option<Res<RenderStats>>,
 ) {
-    let first = !timer.1 && rate.frames > 0;
+    // `FrameRate` counts frames in `Update`; this runs in `Last`, so 1 is the first frame.
+    let first = rate.frames == 1;
     if timer.0.tick(time.delta()).just_finished() || first {
-        timer.1 = true;
         let textured = render.map_or(0, |r| r.textured_materials);
         info!("{}", state_line_with(&bridge, rate.frames, textured));
     }
