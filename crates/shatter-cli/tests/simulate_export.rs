@@ -316,7 +316,9 @@ fn the_record_has_a_header_and_one_row_per_step() {
             "bonds_broken",
             "diverged",
             "debris_removed",
-            "step_ms"
+            "step_ms",
+            "stress_iterations",
+            "stress_ms"
         ]
     );
     let rows: Vec<Vec<f64>> = lines
@@ -333,6 +335,11 @@ fn the_record_has_a_header_and_one_row_per_step() {
             i + 1
         );
         assert!(row[8] >= 0.0);
+        assert!(row[9] >= 0.0 && row[9].fract() == 0.0, "stress iterations");
+        assert!(
+            row[10] >= 0.0 && row[10] <= row[8],
+            "the stress pass is part of the step"
+        );
     }
     // Both objects until the crate goes at 0.5 s (step 30), then the block alone.
     let fragments = |step: usize| rows[step - 1][3];

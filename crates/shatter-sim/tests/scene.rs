@@ -42,6 +42,13 @@ fn invalid_values_name_the_key() {
         e.contains("objects[0].shape") && e.contains("teapot"),
         "{e}"
     );
+    for bad in ["0", "-3", "2.5", "\"all\""] {
+        let e = err(&format!("[world]\nstress_budget = {bad}\n"));
+        assert!(
+            e.contains("world.stress_budget") && e.contains("line 2") && e.contains("none"),
+            "{bad}: {e}"
+        );
+    }
     let e = err("[[projectiles]]\nshape = \"banana\"\nfrom = [0, 0, 1]\nto = [0, 0, 0]\n");
     assert!(e.contains("projectiles[0].shape"), "{e}");
     assert!(matches!(
@@ -221,4 +228,21 @@ fn a_mesh_projectile_is_centred_and_its_largest_extent_is_its_size() {
     let e = Scene::load(&scene_path).unwrap_err().to_string();
     assert!(e.contains("projectiles[0]"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn the_stress_budget_is_read_and_saved() {
+    use shatter_sim::DEFAULT_STRESS_BUDGET;
+    let budget = |text: &str| Scene::parse(text).unwrap().settings.stress_budget;
+    assert_eq!(budget(""), Some(DEFAULT_STRESS_BUDGET));
+    assert_eq!(budget("[world]\nstress_budget = 5\n"), Some(5));
+    assert_eq!(budget("[world]\nstress_budget = \"none\"\n"), None);
+    for text in [
+        "[world]\nstress_budget = 5\n",
+        "[world]\nstress_budget = \"none\"\n",
+    ] {
+        let world = Scene::parse(text).unwrap().build(None).unwrap();
+        let saved = world.to_scene_toml().unwrap();
+        assert_eq!(budget(&saved), budget(text), "{saved}");
+    }
 }

@@ -23,6 +23,15 @@ fn scene(name: &str) -> Scene {
 
 /// World displacement of every fragment's centroid after `steps` steps.
 fn displacements(world: &mut World, id: ObjectId, steps: usize) -> Vec<Vec3> {
+    displacements_and_iterations(world, id, steps).0
+}
+
+/// [`displacements`], and the most stress-solver iterations a step took.
+fn displacements_and_iterations(
+    world: &mut World,
+    id: ObjectId,
+    steps: usize,
+) -> (Vec<Vec3>, usize) {
     let fracture = world.object_fracture(id).unwrap();
     let start: Vec<Vec3> = (0..fracture.fragments.len() as u32)
         .map(|f| {
@@ -31,10 +40,12 @@ fn displacements(world: &mut World, id: ObjectId, steps: usize) -> Vec<Vec3> {
         })
         .collect();
     world.start();
+    let mut most = 0;
     for _ in 0..steps {
         world.step();
+        most = most.max(world.stats().stress_iterations);
     }
-    (0..fracture.fragments.len() as u32)
+    let d = (0..fracture.fragments.len() as u32)
         .map(|f| {
             let c = fracture.fragments[f as usize].centroid.as_vec3();
             match world.fragment_pose(id, f) {
@@ -42,7 +53,8 @@ fn displacements(world: &mut World, id: ObjectId, steps: usize) -> Vec<Vec3> {
                 None => Vec3::new(0.0, -100.0, 0.0),
             }
         })
-        .collect()
+        .collect();
+    (d, most)
 }
 
 /// Fragments of the bridge's slab between the pillars, away from the blast (object frame:
@@ -119,10 +131,29 @@ fn the_bridge_stands_when_only_its_far_end_is_hit() {
 
 #[test]
 fn the_wall_above_the_blasted_hole_comes_down_and_the_rest_stands() {
-    let mut world = scene("collapse").build(None).unwrap();
+    collapse_with(Some(shatter_sim::DEFAULT_STRESS_BUDGET));
+}
+
+/// With a stress budget far below what a solve of the wall needs (up to 49 iterations),
+/// each solve is spread over several steps, and the outcome is the same.
+#[test]
+fn the_wall_comes_down_the_same_when_its_stress_solves_are_spread_over_steps() {
+    collapse_with(Some(4));
+}
+
+fn collapse_with(budget: Option<usize>) {
+    let mut scene = scene("collapse");
+    scene.settings.stress_budget = budget;
+    let mut world = scene.build(None).unwrap();
     let id = world.object_ids()[0];
     let fracture = world.object_fracture(id).unwrap();
-    let d = displacements(&mut world, id, 240);
+    let (d, most) = displacements_and_iterations(&mut world, id, 240);
+    if let Some(budget) = budget {
+        assert!(
+            most <= budget,
+            "a step took {most} iterations, budget {budget}"
+        );
+    }
     // The wall spans x −2.5..2.5, y 0..2.4 (object frame centred at y = 1.2); the blast
     // is at the base of its left end.
     let (mut above, mut above_fell, mut right, mut right_still) = (0, 0, 0, 0);

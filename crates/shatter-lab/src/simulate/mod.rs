@@ -45,6 +45,8 @@ fn step_stats(world: &World) -> StepStats {
         diverged: stats.diverged,
         debris_removed: stats.debris_removed,
         millis: stats.last_step_ms,
+        stress_iterations: stats.stress_iterations,
+        stress_millis: stats.stress_ms,
     }
 }
 

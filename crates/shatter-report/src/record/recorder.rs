@@ -27,10 +27,14 @@ pub struct StepStats {
     pub debris_removed: usize,
     /// Wall-clock time the step took, in milliseconds.
     pub millis: f64,
+    /// Conjugate-gradient iterations of the stress solver in the step.
+    pub stress_iterations: usize,
+    /// Wall-clock time of the step's stress pass, in milliseconds.
+    pub stress_millis: f64,
 }
 
 /// Columns of [`RunRecorder::stats_table`].
-pub const STATS_HEADER: [&str; 9] = [
+pub const STATS_HEADER: [&str; 11] = [
     "step",
     "time_s",
     "bodies",
@@ -40,6 +44,8 @@ pub const STATS_HEADER: [&str; 9] = [
     "diverged",
     "debris_removed",
     "step_ms",
+    "stress_iterations",
+    "stress_ms",
 ];
 
 /// Collects a run step by step, then writes it as CSV and animated GLB.
@@ -254,6 +260,8 @@ impl RunRecorder {
                     Cell::from(s.diverged),
                     Cell::from(s.debris_removed),
                     Cell::from(s.millis),
+                    Cell::from(s.stress_iterations),
+                    Cell::from(s.stress_millis),
                 ])
                 .expect("every row has one cell per STATS_HEADER column");
         }
@@ -391,6 +399,8 @@ mod tests {
             diverged: 1,
             debris_removed: 4,
             millis: 0.5,
+            stress_iterations: 7,
+            stress_millis: 0.25,
         });
         let csv = rec.stats_table().to_csv_string().unwrap();
         let mut lines = csv.lines();
@@ -402,6 +412,8 @@ mod tests {
         assert_eq!(row[6], "1");
         assert_eq!(row[7], "4");
         assert_eq!(row[8], "0.5");
+        assert_eq!(row[9], "7");
+        assert_eq!(row[10], "0.25");
         assert_eq!(row[1].parse::<f64>().unwrap(), 1.0 / 60.0);
     }
 

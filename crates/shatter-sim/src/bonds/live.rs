@@ -54,7 +54,11 @@ pub(crate) struct StressState {
 impl StressState {
     /// The state for `prepared`, or `None` if nothing is anchored (then no island ever
     /// carries a static load).
-    pub fn new(prepared: &Prepared, limits: StressLimits) -> Option<StressState> {
+    pub fn new(
+        prepared: &Prepared,
+        limits: StressLimits,
+        budget: Option<usize>,
+    ) -> Option<StressState> {
         if !prepared.anchored.iter().any(|a| *a) {
             return None;
         }
@@ -81,7 +85,13 @@ impl StressState {
             })
             .collect();
         let graph = BondGraph::new(nodes, bonds, prepared.anchored.clone()).ok()?;
-        let solver = StressSolver::new(&graph, SolverSettings::default());
+        let solver = StressSolver::new(
+            &graph,
+            SolverSettings {
+                budget,
+                ..SolverSettings::default()
+            },
+        );
         let m = prepared.fracture.bonds.len();
         Some(StressState {
             graph,

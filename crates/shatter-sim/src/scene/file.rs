@@ -41,6 +41,9 @@ pub struct WorldSection {
     pub ground: Option<bool>,
     /// Cap on debris bodies.
     pub max_debris: Option<usize>,
+    /// Stress-solver iterations per object per step: an integer ≥ 1, or `"none"` (solve
+    /// to convergence every step). Default [`crate::world::DEFAULT_STRESS_BUDGET`].
+    pub stress_budget: Option<Spanned<toml::Value>>,
     /// How long `shatter simulate` runs by default, in seconds (default 3).
     pub seconds: Option<Spanned<f64>>,
 }

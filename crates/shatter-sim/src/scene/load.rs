@@ -97,6 +97,18 @@ impl Scene {
             settings.ground = g;
         }
         settings.max_debris = w.max_debris;
+        if let Some(b) = &w.stress_budget {
+            settings.stress_budget = match b.get_ref() {
+                toml::Value::Integer(n) if *n >= 1 => Some(*n as usize),
+                toml::Value::String(s) if s == "none" => None,
+                other => {
+                    return Err(SimError::invalid(
+                        ctx.key("world.stress_budget", b),
+                        format!("must be an integer ≥ 1 or \"none\", got {other}"),
+                    ));
+                }
+            };
+        }
         let seconds = match &w.seconds {
             Some(s) if !(s.get_ref().is_finite() && *s.get_ref() > 0.0) => {
                 return Err(SimError::invalid(

@@ -28,6 +28,10 @@ impl World {
                 bond_model: Some(sp(s.bond_model.name().to_string())),
                 ground: Some(s.ground),
                 max_debris: s.max_debris,
+                stress_budget: Some(sp(match s.stress_budget {
+                    Some(n) => toml::Value::Integer(n as i64),
+                    None => toml::Value::String("none".to_string()),
+                })),
                 seconds: None,
             },
             ..SceneFile::default()

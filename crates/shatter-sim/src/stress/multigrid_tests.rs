@@ -283,3 +283,73 @@ fn a_budgeted_solve_resumes_where_it_stopped_and_judges_a_hit_when_it_has_conver
     assert!(once.converged);
     assert_eq!(judged, unsliced.overloaded(&limits));
 }
+
+#[test]
+fn a_contact_that_presses_every_step_of_a_budgeted_solve_loads_the_bonds_once() {
+    // A resting contact is reported at every step. Over the steps an unfinished solve
+    // spans, its force must stay one force (not add up), so the sliced solve ends where a
+    // single unsliced solve with it ends, and a bond that holds it is not broken.
+    let graph = wall(12, 10, 2);
+    let broken = vec![false; graph.bonds().len()];
+    let press = [(12 * 8 + 5, DVec3::new(0.0, 0.0, -2.0e5))];
+    let mut unsliced = StressSolver::new(&graph, SolverSettings::default());
+    let once = unsliced.solve(&graph, &broken, G, &press);
+    assert!(once.converged && once.iterations > 6, "{once:?}");
+    let mut sliced = StressSolver::new(
+        &graph,
+        SolverSettings {
+            budget: Some(2),
+            ..SolverSettings::default()
+        },
+    );
+    let mut solves = 0;
+    loop {
+        let r = sliced.solve(&graph, &broken, G, &press);
+        solves += 1;
+        if r.converged {
+            break;
+        }
+        assert!(solves < 1000, "never converged");
+    }
+    assert!(
+        solves > 2,
+        "the budget did not slice the solve ({solves} solves)"
+    );
+    let peak = (0..graph.bonds().len() as u32)
+        .map(|b| unsliced.stress(b).shear)
+        .fold(0.0, f64::max);
+    for b in 0..graph.bonds().len() as u32 {
+        let (x, y) = (unsliced.stress(b), sliced.stress(b));
+        for (p, q) in [
+            (x.tension, y.tension),
+            (x.compression, y.compression),
+            (x.shear, y.shear),
+        ] {
+            assert!((p - q).abs() <= 1e-4 * peak, "bond {b}: {x:?} sliced {y:?}");
+        }
+    }
+    // A shear limit just over the unsliced peak: nothing breaks either way.
+    let limits = StressLimits {
+        compression: 1e12,
+        tension: 1e12,
+        shear: 1.01 * peak,
+    };
+    assert!(unsliced.overloaded(&limits).is_empty());
+    assert!(sliced.overloaded(&limits).is_empty());
+    // Two contacts on one node in one step add up; the stronger of two steps wins.
+    let mut split = StressSolver::new(&graph, SolverSettings::default());
+    let halves = [
+        (press[0].0, press[0].1 * 0.5),
+        (press[0].0, press[0].1 * 0.5),
+    ];
+    split.solve(&graph, &broken, G, &halves);
+    let b = (0..graph.bonds().len() as u32)
+        .max_by(|&p, &q| {
+            unsliced
+                .stress(p)
+                .shear
+                .total_cmp(&unsliced.stress(q).shear)
+        })
+        .unwrap();
+    assert!((split.stress(b).shear - unsliced.stress(b).shear).abs() <= 1e-6 * peak);
+}

@@ -11,5 +11,7 @@ mod stress_step;
 mod upkeep;
 
 pub use query::ProjectileView;
-pub use settings::{BreakCause, ObjectId, RunState, SimEvent, Stats, WorldSettings};
+pub use settings::{
+    BreakCause, DEFAULT_STRESS_BUDGET, ObjectId, RunState, SimEvent, Stats, WorldSettings,
+};
 pub use state::World;

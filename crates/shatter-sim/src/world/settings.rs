@@ -4,6 +4,11 @@ use glam::Vec3;
 
 use crate::object::BondModel;
 
+/// [`WorldSettings::stress_budget`] by default. Every shipped scene's solves converge
+/// within it at every step (the most is 49 iterations, in `collapse.toml`), so they run
+/// as without a budget; a 20,000-bond wall (88 iterations cold) takes two steps.
+pub const DEFAULT_STRESS_BUDGET: usize = 64;
+
 /// Global settings of a simulation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WorldSettings {
@@ -29,6 +34,12 @@ pub struct WorldSettings {
     /// Run the stress solver on anchored cluster objects (gravity carried to the anchors,
     /// bonds over the material's stress limits break). On by default.
     pub stress: bool,
+    /// Most conjugate-gradient iterations of the stress solver per object per step
+    /// (`None`: solve to convergence every step). A large anchored object then costs a
+    /// bounded time per step; an unfinished solve goes on at the next step and its bonds
+    /// are judged when it has converged (see
+    /// [`SolverSettings::budget`](crate::stress::SolverSettings::budget)).
+    pub stress_budget: Option<usize>,
 }
 
 impl Default for WorldSettings {
@@ -44,6 +55,7 @@ impl Default for WorldSettings {
             max_speed: 1000.0,
             solver_iterations: 4,
             stress: true,
+            stress_budget: Some(DEFAULT_STRESS_BUDGET),
         }
     }
 }

@@ -250,7 +250,12 @@ impl World {
             LiveObject::empty(model, record.prepared.clone(), spec.effective_break_force());
         if model == BondModel::Clusters {
             live.bonds.wear = spec.material.wear;
-            live.stress = StressState::new(&record.prepared, spec.material.limits()).map(Box::new);
+            live.stress = StressState::new(
+                &record.prepared,
+                spec.material.limits(),
+                self.settings.stress_budget,
+            )
+            .map(Box::new);
         }
         let pose = object_pose(spec.position, spec.rotation);
         let surface = Surface {

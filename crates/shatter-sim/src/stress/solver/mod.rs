@@ -47,7 +47,9 @@ pub struct SolverSettings {
     /// large graph costs a bounded time per step. An island left unfinished goes on at
     /// the next solve: its conjugate gradients resume where they stopped while its loads
     /// are unchanged, and a hit's forces stay on it until its solve has converged, so
-    /// the hit is judged (a few steps late) rather than lost. No bond breaks on an
+    /// the hit is judged (a few steps late) rather than lost. Forces of the steps an
+    /// unfinished solve spans are not summed: each node keeps the strongest, so a
+    /// contact that presses every step loads its bonds once. No bond breaks on an
     /// unfinished solve.
     pub budget: Option<usize>,
     /// Shear over normal stiffness, `G/E`.
@@ -145,7 +147,8 @@ struct IslandState {
     dynamic: bool,
     /// Converged at its last solve.
     converged: bool,
-    /// Dynamic forces of an unfinished solve, kept until it converges.
+    /// Dynamic forces (per node, sorted by node) of an unfinished solve, kept until it
+    /// converges; a later step's force on a node replaces the carried one if stronger.
     carry: Vec<(u32, DVec3)>,
     /// `r·z` of conjugate gradients stopped by a limit with the loads unchanged since:
     /// the next solve resumes them (residual and direction are in the solver's vectors).
@@ -308,26 +311,28 @@ impl StressSolver {
         };
         let mut budget = self.settings.budget.unwrap_or(usize::MAX);
         self.last_solved.clear();
-        for (i, mut loads) in by_island.into_iter().enumerate() {
+        for (i, fresh) in by_island.into_iter().enumerate() {
             let island = &mut self.islands[i];
-            let fresh = !loads.is_empty();
-            if island.settled && !island.dynamic && !fresh && island.carry.is_empty() {
+            if island.settled && !island.dynamic && fresh.is_empty() && island.carry.is_empty() {
                 report.islands_skipped += 1;
                 continue;
             }
+            // The loads of this solve: those of an unfinished solve, each node's replaced
+            // by this step's if stronger (never summed: a contact that presses every step
+            // is one force, not one more each step).
+            let changed = merge_strongest(&mut island.carry, fresh);
+            if changed {
+                island.resume = None;
+            }
             if budget == 0 {
-                // Not solved this time: still owed, with any new forces kept for it.
-                island.carry.append(&mut loads);
-                if fresh {
-                    island.resume = None;
-                }
+                // Not solved this time: still owed, with its loads kept for it.
                 island.settled = false;
                 report.islands_deferred += 1;
                 report.converged = false;
                 continue;
             }
-            let resume = if fresh { None } else { island.resume.take() };
-            loads.append(&mut island.carry);
+            let resume = island.resume.take();
+            let loads = std::mem::take(&mut island.carry);
             let cap = self.settings.max_iterations.min(budget);
             let outcome = self.solve_island(i, &loads, cap, resume);
             budget = budget.saturating_sub(outcome.iterations);
@@ -498,4 +503,38 @@ pub(super) fn springs(graph: &BondGraph, settings: &SolverSettings) -> Vec<Sprin
             }
         })
         .collect()
+}
+
+/// Merges this step's forces `fresh` (summed per node: several contacts of one step
+/// add up) into `carry`, the per-node loads of an unfinished solve (sorted by node):
+/// each node keeps the stronger of its carried and its fresh force. Returns whether
+/// `carry` changed.
+fn merge_strongest(carry: &mut Vec<(u32, DVec3)>, mut fresh: Vec<(u32, DVec3)>) -> bool {
+    if fresh.is_empty() {
+        return false;
+    }
+    fresh.sort_unstable_by_key(|(node, _)| *node);
+    let mut summed: Vec<(u32, DVec3)> = Vec::with_capacity(fresh.len());
+    for (node, f) in fresh {
+        match summed.last_mut() {
+            Some((last, sum)) if *last == node => *sum += f,
+            _ => summed.push((node, f)),
+        }
+    }
+    let mut changed = false;
+    for (node, f) in summed {
+        match carry.binary_search_by_key(&node, |(n, _)| *n) {
+            Ok(k) => {
+                if f != carry[k].1 && f.length_squared() >= carry[k].1.length_squared() {
+                    carry[k].1 = f;
+                    changed = true;
+                }
+            }
+            Err(k) => {
+                carry.insert(k, (node, f));
+                changed = true;
+            }
+        }
+    }
+    changed
 }
