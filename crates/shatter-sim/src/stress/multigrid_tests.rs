@@ -353,3 +353,110 @@ fn a_contact_that_presses_every_step_of_a_budgeted_solve_loads_the_bonds_once() 
         .unwrap();
     assert!((split.stress(b).shear - unsliced.stress(b).shear).abs() <= 1e-6 * peak);
 }
+
+/// The stresses of `solver` and `fresh` agree within the solver's tolerance.
+fn same_stresses(graph: &BondGraph, solver: &StressSolver, fresh: &StressSolver) {
+    let peak = (0..graph.bonds().len() as u32)
+        .map(|b| fresh.stress(b).compression.max(fresh.stress(b).tension))
+        .fold(0.0, f64::max);
+    for b in 0..graph.bonds().len() as u32 {
+        let (x, y) = (fresh.stress(b), solver.stress(b));
+        for (p, q) in [
+            (x.tension, y.tension),
+            (x.compression, y.compression),
+            (x.shear, y.shear),
+        ] {
+            assert!((p - q).abs() <= 1e-3 * peak, "bond {b}: {x:?} kept {y:?}");
+        }
+    }
+}
+
+#[test]
+fn an_island_that_loses_a_bond_or_a_block_keeps_its_hierarchy_and_the_same_answer() {
+    let graph = wall(12, 10, 2);
+    let bonds = graph.bonds().len();
+    let mut broken = vec![false; bonds];
+    let mut solver = StressSolver::new(&graph, SolverSettings::default());
+    let cold = solver.solve(&graph, &broken, G, &[]);
+    assert!(cold.converged && cold.hierarchies_built == 1, "{cold:?}");
+    // An interior bond between two free blocks: no node is lost.
+    let middle = 12 * 2 * 5 + 6;
+    let inner = graph
+        .bonds()
+        .iter()
+        .position(|b| b.a == middle || b.b == middle)
+        .unwrap();
+    broken[inner] = true;
+    // The top corner block knocked off: one of 216 free nodes is lost.
+    let corner = 12 * 2 * 10 - 1;
+    for (k, b) in graph.bonds().iter().enumerate() {
+        if b.a == corner || b.b == corner {
+            broken[k] = true;
+        }
+    }
+    let kept = solver.solve(&graph, &broken, G, &[]);
+    assert!(kept.converged && kept.hierarchies_built == 0, "{kept:?}");
+    let mut fresh = StressSolver::new(&graph, SolverSettings::default());
+    let report = fresh.solve(&graph, &broken, G, &[]);
+    assert_eq!(report.hierarchies_built, 1);
+    same_stresses(&graph, &solver, &fresh);
+    assert_eq!(solver.stress(inner as u32), BondStress::default());
+    // The two end columns cut off (a sixth of the nodes): both parts built afresh.
+    for (k, b) in graph.bonds().iter().enumerate() {
+        let col = |v: u32| v % 12;
+        if (col(b.a) < 2) != (col(b.b) < 2) {
+            broken[k] = true;
+        }
+    }
+    let rebuilt = solver.solve(&graph, &broken, G, &[]);
+    assert!(
+        rebuilt.converged && rebuilt.hierarchies_built >= 1,
+        "{rebuilt:?}"
+    );
+}
+
+#[test]
+fn a_hit_on_an_unfinished_solve_is_still_judged_after_a_bond_breaks_elsewhere() {
+    let graph = wall(12, 10, 2);
+    let mut broken = vec![false; graph.bonds().len()];
+    let limits = StressLimits {
+        compression: 1e12,
+        tension: 1e12,
+        shear: 1.0e7,
+    };
+    let hit = [(12 * 8 + 5, DVec3::new(0.0, 0.0, -4.0e6))];
+    let mut unsliced = StressSolver::new(&graph, SolverSettings::default());
+    unsliced.solve(&graph, &broken, G, &hit);
+    let expected = unsliced.overloaded(&limits);
+    assert!(!expected.is_empty());
+    let mut sliced = StressSolver::new(
+        &graph,
+        SolverSettings {
+            budget: Some(3),
+            ..SolverSettings::default()
+        },
+    );
+    assert!(!sliced.solve(&graph, &broken, G, &hit).converged);
+    // A bond far from the hit breaks while the hit's solve is unfinished.
+    let far = graph
+        .bonds()
+        .iter()
+        .position(|b| b.a == 12 * 2 * 9 && b.b == 12 * 2 * 9 + 1)
+        .unwrap();
+    assert!(!expected.iter().any(|(b, _)| *b as usize == far));
+    broken[far] = true;
+    let mut judged = Vec::new();
+    for _ in 0..1000 {
+        if sliced.solve(&graph, &broken, G, &[]).converged {
+            judged = sliced.overloaded(&limits);
+            break;
+        }
+    }
+    let mut fresh = StressSolver::new(&graph, SolverSettings::default());
+    fresh.solve(&graph, &broken, G, &hit);
+    assert!(
+        !judged.is_empty(),
+        "the hit was lost when the bonds changed"
+    );
+    assert_eq!(judged, fresh.overloaded(&limits));
+}

@@ -54,7 +54,7 @@ impl StressSolver {
                 let residual = self.norm_r(free);
                 let mut rz = 0.0;
                 if residual > target {
-                    rz = self.precondition(&island);
+                    rz = self.precondition(i as u32, &island);
                     for &v in free {
                         let v = v as usize;
                         self.pu[v] = self.qu[v];
@@ -95,7 +95,7 @@ impl StressSolver {
                     break;
                 }
                 // z = P·r, β = (r·z)/(r·z)_old, p = z + β·p.
-                let rz_new = self.precondition(&island);
+                let rz_new = self.precondition(i as u32, &island);
                 let beta = rz_new / rz;
                 rz = rz_new;
                 for &v in free {
@@ -156,15 +156,28 @@ impl StressSolver {
 
     /// `q = M⁻¹·r` on the island's free nodes (its multigrid's W-cycle, or block
     /// Jacobi); returns `r·q`.
-    fn precondition(&mut self, island: &IslandState) -> f64 {
+    fn precondition(&mut self, id: u32, island: &IslandState) -> f64 {
         let free = &island.free;
-        if let Some(mg) = &island.multigrid {
-            let r: Vec<(DVec3, DVec3)> = free
+        if let Some(h) = &island.multigrid {
+            // On the hierarchy's nodes: the residual on this island's, zero on those it
+            // lost (see `Hierarchy`).
+            let here = |v: u32| self.node_island[v as usize] == id;
+            let r: Vec<(DVec3, DVec3)> = h
+                .nodes
                 .iter()
-                .map(|&v| (self.ru[v as usize], self.rt[v as usize]))
+                .map(|&v| {
+                    if here(v) {
+                        (self.ru[v as usize], self.rt[v as usize])
+                    } else {
+                        (DVec3::ZERO, DVec3::ZERO)
+                    }
+                })
                 .collect();
-            for (&v, z) in free.iter().zip(mg.apply(&r)) {
-                (self.qu[v as usize], self.qt[v as usize]) = z;
+            let z = h.multigrid.apply(&r);
+            for (&v, z) in h.nodes.iter().zip(z) {
+                if here(v) {
+                    (self.qu[v as usize], self.qt[v as usize]) = z;
+                }
             }
         } else {
             for &v in free {
