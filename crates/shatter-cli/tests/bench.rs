@@ -136,7 +136,11 @@ fn bench_runtime_reports_every_case_and_refuses_bad_counts() {
             "{r}"
         );
         assert!(r["cut_ms"]["max"].as_f64().unwrap() >= r["cut_ms"]["min"].as_f64().unwrap());
-        assert!(r["world_ms"]["mean"].as_f64().unwrap() > 0.0);
+        let (world, apply) = (
+            r["world_ms"]["mean"].as_f64().unwrap(),
+            r["apply_ms"]["mean"].as_f64().unwrap(),
+        );
+        assert!(world > 0.0 && apply > 0.0 && apply < world, "{r}");
     }
     shatter(dir.path(), &["bench", "runtime", "--runs", "0"]).bad_input(&["--runs"]);
     shatter(dir.path(), &["bench", "runtime", "--threads", "0"]).bad_input(&["--threads"]);

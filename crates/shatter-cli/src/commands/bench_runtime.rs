@@ -43,13 +43,19 @@ pub fn run(args: &BenchRuntimeArgs, ctx: &Context) -> Result<(), CliError> {
         report.threads, report.runs, report.budget_ms
     );
     println!(
-        "{:<10} {:>6} {:>9} {:>12} {:>12} {:>14}",
-        "case", "pieces", "fragments", "cut mean ms", "cut min ms", "in world ms"
+        "{:<10} {:>6} {:>9} {:>12} {:>12} {:>14} {:>14}",
+        "case", "pieces", "fragments", "cut mean ms", "cut min ms", "in world ms", "apply ms"
     );
     for row in &report.rows {
         println!(
-            "{:<10} {:>6} {:>9} {:>12.3} {:>12.3} {:>14.3}",
-            row.case, row.pieces, row.fragments, row.cut_ms.mean, row.cut_ms.min, row.world_ms.mean
+            "{:<10} {:>6} {:>9} {:>12.3} {:>12.3} {:>14.3} {:>14.3}",
+            row.case,
+            row.pieces,
+            row.fragments,
+            row.cut_ms.mean,
+            row.cut_ms.min,
+            row.world_ms.mean,
+            row.apply_ms.mean
         );
     }
     Ok(())

@@ -74,6 +74,9 @@ pub struct Row {
     pub cut_ms: Spread,
     /// The cut in a world, with the new bodies and colliders (ms): mean, min, max.
     pub world_ms: Spread,
+    /// Of `world_ms`, the part the simulation's thread pays when the cut was computed on
+    /// a thread: applying it ([`shatter_sim::Stats::cut_apply_ms`]).
+    pub apply_ms: Spread,
 }
 
 /// The benchmark's report.
@@ -158,7 +161,7 @@ pub fn run(options: BenchRuntimeOptions, ctx: &Context, quiet: bool) -> Result<R
                 .map_err(|e| LabError::internal(format!("{}: {e}", case.name)))
         };
         let warm = pool.install(|| cut(0))?;
-        let (mut cut_ms, mut world_ms) = (Vec::new(), Vec::new());
+        let (mut cut_ms, mut world_ms, mut apply_ms) = (Vec::new(), Vec::new(), Vec::new());
         for i in 0..u64::from(options.runs) {
             ctx.progress.check()?;
             let t = web_time::Instant::now();
@@ -169,6 +172,7 @@ pub fn run(options: BenchRuntimeOptions, ctx: &Context, quiet: bool) -> Result<R
             pool.install(|| world.cut_now(id, 0, at.as_vec3()))
                 .map_err(|e| LabError::internal(format!("{}: {e}", case.name)))?;
             world_ms.push(t.elapsed().as_secs_f64() * 1e3);
+            apply_ms.push(world.stats().cut_apply_ms);
         }
         bar.tick(case.name);
         let spread = |v: Vec<f64>| Spread::of(v).ok_or_else(|| LabError::internal("no timed run"));
@@ -178,6 +182,7 @@ pub fn run(options: BenchRuntimeOptions, ctx: &Context, quiet: bool) -> Result<R
             fragments: warm.fragments.len(),
             cut_ms: spread(cut_ms)?,
             world_ms: spread(world_ms)?,
+            apply_ms: spread(apply_ms)?,
         });
     }
     Ok(Report {

@@ -148,10 +148,8 @@ impl LiveObject {
     ) -> usize {
         let mut made = Vec::new();
         let exact = self.exact_mass(f, surface.density);
-        for piece in &self.prepared.pieces[f as usize] {
-            let Some(builder) = ColliderBuilder::convex_hull(piece) else {
-                continue;
-            };
+        for shape in &self.prepared.shapes[f as usize] {
+            let builder = ColliderBuilder::new(shape.clone());
             // The fragment's exact mass properties sit on its first collider; the others
             // only collide. (The hulls' own would be up to a few per cent off where a
             // piece is convex only within the decomposition's tolerance, and a runtime

@@ -1,9 +1,11 @@
 //! From a spec to simulation-ready geometry: run (or fetch) the fracture, apply the scale,
-//! convert the convex pieces to `f32`, find the anchored fragments and the bond adjacency.
+//! build the convex pieces' collision shapes, find the anchored fragments and the bond
+//! adjacency.
 
 use std::sync::Arc;
 
 use glam::Vec3;
+use rapier3d::prelude::SharedShape;
 use shatter_geom::fracture::{Bond, Fracture, Fragment, Roughness};
 use shatter_geom::io::FileSource;
 use shatter_geom::model::{Corners, Model};
@@ -19,8 +21,10 @@ use crate::runtime::FractureTiming;
 pub struct Prepared {
     /// The scaled fracture (meshes for the renderer, bonds for the sim).
     pub fracture: Arc<Fracture>,
-    /// Per fragment, its convex pieces as `f32` point clouds.
-    pub pieces: Vec<Vec<Vec<Vec3>>>,
+    /// Per fragment, the collision shapes of its convex pieces (their hulls, built once:
+    /// a body built again, or a fragment attached to another body, shares them). A piece
+    /// whose points span no volume has none.
+    pub shapes: Vec<Vec<SharedShape>>,
     /// Per fragment, its mass (volume × density).
     pub masses: Vec<f32>,
     /// Per fragment, whether it is bonded to the world (anchored objects only).
@@ -177,22 +181,47 @@ fn geom_fracture(
 
 /// Scales `fracture` and converts it for the simulation.
 pub fn prepare(fracture: &Fracture, scale: Vec3, density: f32, anchored: bool) -> Prepared {
+    prepare_with(fracture, scale, density, anchored, None)
+}
+
+/// The collision shapes of `fracture`'s fragments at scale `scale` (see
+/// [`Prepared::shapes`]): the hull of each convex piece.
+pub fn collision_shapes(fracture: &Fracture, scale: Vec3) -> Vec<Vec<SharedShape>> {
     let s = scale.as_dvec3();
+    fracture
+        .fragments
+        .iter()
+        .map(|f| {
+            f.convex_pieces
+                .iter()
+                .filter_map(|p| {
+                    let points: Vec<Vec3> = p.iter().map(|v| (*v * s).as_vec3()).collect();
+                    SharedShape::convex_hull(&points)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// [`prepare`], with the collision shapes already built (by [`collision_shapes`] at the
+/// same scale; a runtime cut builds them on its thread).
+pub(crate) fn prepare_with(
+    fracture: &Fracture,
+    scale: Vec3,
+    density: f32,
+    anchored: bool,
+    shapes: Option<Vec<Vec<SharedShape>>>,
+) -> Prepared {
+    let s = scale.as_dvec3();
+    let shapes = shapes
+        .filter(|v| v.len() == fracture.fragments.len())
+        .unwrap_or_else(|| collision_shapes(fracture, scale));
     let fragments: Vec<Fragment> = fracture
         .fragments
         .iter()
         .map(|f| scale_fragment(f, s))
         .collect();
     let bonds: Vec<Bond> = fracture.bonds.iter().map(|b| scale_bond(b, s)).collect();
-    let pieces = fragments
-        .iter()
-        .map(|f| {
-            f.convex_pieces
-                .iter()
-                .map(|p| p.iter().map(|v| v.as_vec3()).collect())
-                .collect()
-        })
-        .collect();
     let masses = fragments
         .iter()
         .map(|f| (f.volume * density as f64) as f32)
@@ -214,7 +243,7 @@ pub fn prepare(fracture: &Fracture, scale: Vec3, density: f32, anchored: bool) -
             materials: fracture.materials.clone(),
             ..Default::default()
         }),
-        pieces,
+        shapes,
         masses,
         anchored,
         adjacency,

@@ -2,6 +2,7 @@
 //! and the seed of each cut.
 
 use glam::{DVec3, Vec3};
+use rapier3d::prelude::SharedShape;
 use shatter_geom::fracture::{Fracture, FractureError};
 use shatter_geom::model::Model;
 
@@ -50,15 +51,26 @@ impl CutInput {
         shatter_geom::budget::Estimate::voronoi_fracture(u64::from(self.pieces), triangles)
     }
 
-    pub(crate) fn run(self) -> Result<Fracture, FractureError> {
-        runtime::cut_at(&self.model, self.impact, self.pieces, self.seed)
+    /// The cut, and its fragments' collision shapes (built here, off the simulation's
+    /// thread, rather than when the cut is applied).
+    pub(crate) fn run(self) -> Result<CutResult, FractureError> {
+        let fracture = runtime::cut_at(&self.model, self.impact, self.pieces, self.seed)?;
+        let shapes = crate::object::prepare::collision_shapes(&fracture, Vec3::ONE);
+        Ok(CutResult { fracture, shapes })
     }
+}
+
+/// What a cut computed.
+pub(crate) struct CutResult {
+    pub fracture: Fracture,
+    /// [`crate::object::prepare::collision_shapes`] of `fracture` (unscaled).
+    pub shapes: Vec<Vec<SharedShape>>,
 }
 
 /// The cut's computation.
 pub(crate) enum CutJob {
     #[cfg(not(target_arch = "wasm32"))]
-    Thread(std::thread::JoinHandle<Result<Fracture, FractureError>>),
+    Thread(std::thread::JoinHandle<Result<CutResult, FractureError>>),
     /// Not started yet (no threads): run when due. (Plain data, not a closure: the world
     /// is shared between threads, as a Bevy resource is.)
     #[cfg(target_arch = "wasm32")]
@@ -77,7 +89,7 @@ impl CutJob {
         }
     }
 
-    pub(crate) fn finish(self) -> Result<Fracture, String> {
+    pub(crate) fn finish(self) -> Result<CutResult, String> {
         match self {
             #[cfg(not(target_arch = "wasm32"))]
             CutJob::Thread(handle) => match handle.join() {

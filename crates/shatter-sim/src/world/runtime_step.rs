@@ -14,17 +14,17 @@ use std::sync::Arc;
 
 use glam::{DVec3, Vec3};
 use rapier3d::prelude::*;
-use shatter_geom::fracture::Fracture;
+use web_time::Instant;
 
 use crate::bonds::clusters::{self, Loads};
 use crate::bonds::split::world_com;
 use crate::bonds::tags::{Kind, untag};
 use crate::breaking::inherited_velocity;
 use crate::error::SimError;
-use crate::object::prepare::prepare;
+use crate::object::prepare::prepare_with;
 use crate::object::{BondModel, FractureSource};
 use crate::runtime::{self, FractureTiming, cut_seed};
-use crate::world::cut::{CutInput, CutJob, PendingCut};
+use crate::world::cut::{CutInput, CutJob, CutResult, PendingCut};
 use crate::world::settings::SimEvent;
 use crate::world::state::{ObjectId, ObjectRecord, World};
 use crate::world::step::ContactHit;
@@ -151,14 +151,15 @@ impl World {
             .into_iter()
             .partition(|c| c.due <= steps);
         self.cuts = later;
+        let t0 = Instant::now();
         for cut in due {
             let (object, fragment) = (cut.object, cut.fragment);
             let hit = (cut.force, cut.impulse, cut.other_mass);
             let impact = cut.impact;
             match cut.job.finish() {
-                Ok(fracture) => {
+                Ok(cut) => {
                     if let Err(reason) =
-                        self.replace_fragment(object, fragment, fracture, impact, Some(hit))
+                        self.replace_fragment(object, fragment, cut, impact, Some(hit))
                     {
                         self.cut_failed(object, fragment, reason);
                     }
@@ -166,6 +167,7 @@ impl World {
                 Err(reason) => self.cut_failed(object, fragment, reason),
             }
         }
+        self.stats.cut_apply_ms = t0.elapsed().as_secs_f64() * 1e3;
     }
 
     fn cut_failed(&mut self, object: ObjectId, fragment: u32, reason: String) {
@@ -236,15 +238,17 @@ impl World {
             .get(body)
             .ok_or_else(|| SimError::invalid(&key, "the fragment's body is gone"))?;
         let impact = rb.position().inverse_transform_point(point).as_dvec3();
-        let fracture = cut_input(record, fragment, impact)
+        let cut = cut_input(record, fragment, impact)
             .run()
             .map_err(|source| SimError::Fracture {
                 key: key.clone(),
                 source,
             })?;
+        let t0 = Instant::now();
         let child = self
-            .replace_fragment(id, fragment, fracture, impact, None)
+            .replace_fragment(id, fragment, cut, impact, None)
             .map_err(|reason| SimError::EmptyFracture { key, reason })?;
+        self.stats.cut_apply_ms = t0.elapsed().as_secs_f64() * 1e3;
         self.report_breaks();
         self.update_counts();
         Ok(child)
@@ -256,10 +260,11 @@ impl World {
         &mut self,
         id: ObjectId,
         fragment: u32,
-        fracture: Fracture,
+        cut: CutResult,
         impact: DVec3,
         hit: Option<(f32, Vec3, f32)>,
     ) -> Result<ObjectId, String> {
+        let CutResult { fracture, shapes } = cut;
         let record = self.objects.get(&id).ok_or("the object is gone")?;
         let live = record.live.as_ref().ok_or("the object has no bodies")?;
         let body = live
@@ -282,11 +287,17 @@ impl World {
         );
         let mut spec = record.spec.clone();
         let anchored = spec.anchored && !dynamic;
-        let prepared = prepare(&fracture, Vec3::ONE, spec.material.density, anchored);
-        if prepared.pieces.iter().all(|p| p.is_empty()) {
+        let prepared = prepare_with(
+            &fracture,
+            Vec3::ONE,
+            spec.material.density,
+            anchored,
+            Some(shapes),
+        );
+        if prepared.shapes.iter().all(|p| p.is_empty()) {
             return Err(format!(
                 "{} fragments, none with a convex piece",
-                prepared.pieces.len()
+                prepared.shapes.len()
             ));
         }
         let pieces = fracture.fragments.len();

@@ -100,6 +100,12 @@ pub struct Stats {
     /// Runtime cuts applied since start (an `on_impact` object's first cut, fragments
     /// cut again).
     pub runtime_fractures: usize,
+    /// Wall-clock milliseconds spent applying runtime cuts in the last step (or
+    /// [`World::cut_now`](crate::World::cut_now)'s application): the new object, its
+    /// bodies and colliders, and any wait for a cut's thread that has not finished. This
+    /// is what the simulation's thread pays; the cut itself and its collision shapes are
+    /// computed on a thread (native) before it.
+    pub cut_apply_ms: f64,
     /// The deepest fracture level reached by a runtime cut (0: none yet).
     pub max_depth: u32,
     /// Intact bonds worn by hits below their break force (health under 1, damage).

@@ -317,12 +317,12 @@ impl World {
         }
         let fracture = resolve_fracture(spec, key, &Layered(&*self.files, FileSystem))?;
         let prepared = prepare(&fracture, spec.scale, spec.material.density, spec.anchored);
-        if prepared.pieces.iter().all(|p| p.is_empty()) {
+        if prepared.shapes.iter().all(|p| p.is_empty()) {
             return Err(SimError::EmptyFracture {
                 key: key.to_string(),
                 reason: format!(
                     "{} fragments, none with a convex piece",
-                    prepared.pieces.len()
+                    prepared.shapes.len()
                 ),
             });
         }
