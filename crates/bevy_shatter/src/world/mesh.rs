@@ -171,6 +171,7 @@ mod tests {
             corners: Default::default(),
             material: vec![0; 4],
             convex_pieces: vec![],
+            convex_hulls: vec![],
             volume: 1.0 / 6.0,
             centroid: DVec3::splat(0.25),
             inertia: DMat3::IDENTITY,

@@ -98,6 +98,17 @@ pub enum InvalidFracture {
         /// The signed volume its mesh encloses.
         mesh: f64,
     },
+    /// `convex_hulls` is neither empty nor one list per convex piece, or a hull triangle
+    /// names a point its piece does not have.
+    #[error("fragment {fragment}: convex piece {piece}'s hull {reason}")]
+    ConvexHull {
+        /// The fragment.
+        fragment: usize,
+        /// The convex piece (the number of pieces when the lists do not match them).
+        piece: usize,
+        /// What is wrong.
+        reason: &'static str,
+    },
     /// The fragments' volumes do not add up to the expected volume.
     #[error("the fragments' volumes add up to {total:e}, not {expected:e} (relative error {:e})", (total - expected).abs() / expected.abs())]
     TotalVolume {
@@ -132,7 +143,8 @@ impl Fracture {
     /// no degenerate triangles, no two triangles on the same corners (equal or back to
     /// back), every undirected edge used by exactly two triangles walking it opposite
     /// ways; one `interior` flag per triangle; a positive volume equal to what its mesh
-    /// encloses. Bonds must be sorted by `(a, b)` with `a < b <` the fragment count, each
+    /// encloses; the convex pieces' hulls, when given, one list per piece, naming only
+    /// the piece's points. Bonds must be sorted by `(a, b)` with `a < b <` the fragment count, each
     /// pair once, with a positive finite area, a unit normal and a finite centroid.
     /// Works at any magnitude (volumes are measured in a rescaled frame).
     ///
@@ -165,6 +177,7 @@ impl Fracture {
                 });
             }
             check_surface(i, &f.mesh)?;
+            check_hulls(i, f)?;
             let mesh = enclosed_volume(&f.mesh);
             let agrees = (f.volume - mesh).abs() <= VOLUME_TOLERANCE * f.volume.abs();
             if !(f.volume > 0.0 && f.volume.is_finite() && agrees) {
@@ -218,6 +231,31 @@ impl Fracture {
         }
         Ok(())
     }
+}
+
+/// The convex pieces' hulls of fragment `i`: none, or one list per piece whose triangles
+/// name the piece's points.
+fn check_hulls(i: usize, f: &super::types::Fragment) -> Result<(), InvalidFracture> {
+    if f.convex_hulls.is_empty() {
+        return Ok(());
+    }
+    if f.convex_hulls.len() != f.convex_pieces.len() {
+        return Err(InvalidFracture::ConvexHull {
+            fragment: i,
+            piece: f.convex_pieces.len(),
+            reason: "lists do not match the pieces",
+        });
+    }
+    for (k, (hull, piece)) in f.convex_hulls.iter().zip(&f.convex_pieces).enumerate() {
+        if hull.iter().flatten().any(|&v| v as usize >= piece.len()) {
+            return Err(InvalidFracture::ConvexHull {
+                fragment: i,
+                piece: k,
+                reason: "names a point beyond the piece's",
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The signed volume `mesh` encloses, measured in its own rescaled frame (so it neither

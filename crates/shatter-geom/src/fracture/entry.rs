@@ -6,13 +6,14 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
 use super::attributes::{Source, attach};
-use super::bonds::merge::merge_small;
-use super::kernel::convex::convex_pieces;
-use super::kernel::{Piece, is_surface, mesh_scale};
+use super::bonds::merge::merge_small_with;
+use super::kernel::convex::{convex_pieces, fine_pieces};
+use super::kernel::inherit::{Part, inherited_pieces};
+use super::kernel::{Piece, Plane, is_surface, mesh_scale};
 use super::methods::grid::{Grid, bricks, is_box, sliced};
 use super::methods::slice::{random_planes, slice};
 use super::methods::tetra::{SLIVER_VOLUME_FRACTION, TetraOptions, tetra};
-use super::methods::voronoi::{voronoi, voronoi_with};
+use super::methods::voronoi::{Cells, delaunay_neighbours, voronoi_cells};
 use super::normalize::{Frame, check_cancellation, check_volume_sum};
 use super::params::{FractureError, FractureParams, Method, Pattern, Seeds};
 use super::seeds::patterns::{seeds, splinter_weights};
@@ -60,7 +61,7 @@ const PLANE_EPS: f64 = 1e-10;
 /// input's) and the results are mapped back. A volume, inertia tensor or bond area beyond
 /// `f64` is refused with [`FractureError::OutOfRange`].
 pub fn fracture(mesh: &TriMesh, params: &FractureParams) -> Result<Fracture, FractureError> {
-    let (mut result, tags) = fracture_tagged(mesh, params)?;
+    let (mut result, tags) = fracture_tagged(mesh, params, Convex::Decomposed)?;
     let none = Corners::default();
     let source = Source {
         mesh,
@@ -114,8 +115,93 @@ pub fn fracture(mesh: &TriMesh, params: &FractureParams) -> Result<Fracture, Fra
 /// # Ok::<(), shatter_geom::fracture::FractureError>(())
 /// ```
 pub fn fracture_model(model: &Model, params: &FractureParams) -> Result<Fracture, FractureError> {
+    fracture_model_with(model, params, Convex::Decomposed)
+}
+
+/// Fractures fragment `f` of `fracture`: [`fracture_model`] of the fragment (its mesh,
+/// corner attributes and materials), whose new fragments take their convex pieces from
+/// the fragment's own.
+///
+/// With a Voronoi method, each new fragment's convex pieces are the fragment's pieces
+/// clipped by the new fragment's cell and bounding box ([`Fragment::convex_pieces`], with
+/// their hulls in [`Fragment::convex_hulls`]): a cell is convex and so is a piece, so
+/// each is a convex polytope, found by clipping alone, and their union covers the new
+/// fragment as the fragment's pieces covered it. Pieces under 1e-3 of a new fragment are
+/// left out, as the decomposition leaves them out. This is much cheaper than decomposing
+/// every new fragment (a runtime cut) and nests: the new fragments can be cut the same
+/// way. Pieces are as close to their fragment as the fragment's were to it: give the
+/// solid first cut fine pieces ([`intact`]). The other methods, and a fragment without
+/// convex pieces, decompose the new fragments as [`fracture_model`] does.
+///
+/// ```
+/// use shatter_geom::fracture::{fracture_fragment, intact, FractureParams};
+/// use shatter_geom::{model::Model, shapes};
+///
+/// let whole = intact(&Model::from_mesh(shapes::cube()))?;
+/// assert_eq!(whole.fragments[0].convex_hulls.len(), 1);
+/// let cut = fracture_fragment(&whole, 0, &FractureParams::voronoi(12, 3))?;
+/// assert!((cut.total_volume() - 1.0).abs() < 1e-9);
+/// for f in &cut.fragments {
+///     // One piece per fragment (the cube is one convex piece), with its hull.
+///     assert_eq!(f.convex_pieces.len(), 1);
+///     assert_eq!(f.convex_hulls.len(), 1);
+/// }
+/// # Ok::<(), shatter_geom::fracture::FractureError>(())
+/// ```
+pub fn fracture_fragment(
+    fracture: &Fracture,
+    f: usize,
+    params: &FractureParams,
+) -> Result<Fracture, FractureError> {
+    let fragment = fracture
+        .fragments
+        .get(f)
+        .ok_or(FractureError::BadFragment {
+            fragment: f,
+            reason: "no such fragment",
+        })?;
+    let model = Model {
+        mesh: fragment.mesh.clone(),
+        corners: fragment.corners.clone(),
+        material: fragment.material.clone(),
+        materials: fracture.materials.clone(),
+    };
+    let convex = if fragment.convex_pieces.is_empty() {
+        Convex::Decomposed
+    } else {
+        Convex::Clipped(&fragment.convex_pieces, &fragment.convex_hulls)
+    };
+    fracture_model_with(&model, params, convex)
+}
+
+/// `model` as one fragment, not cut, whose convex pieces are made to be cut again
+/// ([`fracture_fragment`]): up to 64 of them, each convex within 1 % of the model's
+/// size (where [`fracture_model`] stops at 16), each with its hull
+/// ([`Fragment::convex_hulls`]). An object fractured at runtime starts as this.
+///
+/// ```
+/// use shatter_geom::fracture::intact;
+/// use shatter_geom::{model::Model, shapes};
+///
+/// let bird = intact(&Model::from_mesh(shapes::bird()))?;
+/// let f = &bird.fragments[0];
+/// assert!(f.convex_pieces.len() > 16);
+/// assert_eq!(f.convex_hulls.len(), f.convex_pieces.len());
+/// assert_eq!(bird.validate(Some(shapes::bird().volume())), Ok(()));
+/// # Ok::<(), shatter_geom::fracture::FractureError>(())
+/// ```
+pub fn intact(model: &Model) -> Result<Fracture, FractureError> {
+    fracture_model_with(model, &FractureParams::voronoi(1, 0), Convex::Fine)
+}
+
+/// [`fracture_model`], with the convex pieces made as `convex` says.
+fn fracture_model_with(
+    model: &Model,
+    params: &FractureParams,
+    convex: Convex<'_>,
+) -> Result<Fracture, FractureError> {
     model.check()?;
-    let (mut result, tags) = fracture_tagged(&model.mesh, params)?;
+    let (mut result, tags) = fracture_tagged(&model.mesh, params, convex)?;
     let source = Source {
         mesh: &model.mesh,
         corners: &model.corners,
@@ -126,12 +212,60 @@ pub fn fracture_model(model: &Model, params: &FractureParams) -> Result<Fracture
     Ok(result)
 }
 
+/// Where the fragments' convex pieces come from.
+#[derive(Debug, Clone, Copy)]
+enum Convex<'a> {
+    /// Each fragment decomposed on its own ([`convex_pieces`]).
+    Decomposed,
+    /// Each fragment decomposed finely, with the pieces' hulls ([`fine_pieces`]).
+    Fine,
+    /// The input's own convex pieces (points, and their hulls when known; in the input's
+    /// frame), clipped by each Voronoi cell ([`inherited_pieces`]).
+    Clipped(&'a [Vec<DVec3>], &'a [Vec<[u32; 3]>]),
+}
+
+/// [`Convex`] in the local frame.
+enum LocalConvex {
+    Decomposed,
+    Fine,
+    Clipped(Vec<Part>),
+}
+
+impl LocalConvex {
+    /// `convex` with its pieces mapped into `frame` (a piece the frame cannot hold, or
+    /// that spans no volume, is left out).
+    fn of(convex: Convex<'_>, frame: &Frame) -> LocalConvex {
+        match convex {
+            Convex::Decomposed => LocalConvex::Decomposed,
+            Convex::Fine => LocalConvex::Fine,
+            Convex::Clipped(points, hulls) => {
+                let hulls = (hulls.len() == points.len()).then_some(hulls);
+                let parts: Vec<Part> = points
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(k, piece)| {
+                        let local: Option<Vec<DVec3>> =
+                            piece.iter().map(|&p| frame.point_to_local(p)).collect();
+                        Part::new(&local?, hulls.map(|h| h[k].as_slice()))
+                    })
+                    .collect();
+                if parts.is_empty() {
+                    LocalConvex::Decomposed
+                } else {
+                    LocalConvex::Clipped(parts)
+                }
+            }
+        }
+    }
+}
+
 /// The fracture itself: the fragments (without attributes) and, per fragment, the
 /// kernel tag of each triangle (surface tags naming `mesh`'s triangles). The mesh is
 /// moved and scaled into a local frame, fractured there and mapped back.
 fn fracture_tagged(
     mesh: &TriMesh,
     params: &FractureParams,
+    convex: Convex<'_>,
 ) -> Result<(Fracture, Vec<Vec<u64>>), FractureError> {
     mesh.validate_indices()?;
     let frame = Frame::of(mesh);
@@ -150,7 +284,8 @@ fn fracture_tagged(
         Method::Grid { voids, .. } => !voids.is_empty(),
         _ => false,
     };
-    let (local, tags) = fracture_local(piece, warnings, &params, frame.metric(), &frame)?;
+    let convex = LocalConvex::of(convex, &frame);
+    let (local, tags) = fracture_local(piece, warnings, &params, &convex, &frame)?;
     // A cut that lost or gained volume is refused, not returned (features far below the
     // cut tolerance, as a body squashed beside a 1e33 spike).
     if !partial || frame.is_per_axis() {
@@ -233,9 +368,10 @@ fn fracture_local(
     piece: Piece,
     mut warnings: Vec<String>,
     params: &FractureParams,
-    metric: DVec3,
+    convex: &LocalConvex,
     frame: &Frame,
 ) -> Result<(Fracture, Vec<Vec<u64>>), FractureError> {
+    let metric = frame.metric();
     let mut rng = ChaCha8Rng::seed_from_u64(params.seed);
     let scale = mesh_scale(&piece);
     let eps = PLANE_EPS * scale;
@@ -287,12 +423,13 @@ fn fracture_local(
             // Per axis, the seeds' Delaunay neighbours under the metric would need
             // coordinates squashed up to 1e-150-fold, beyond what the exact predicates
             // take: every other seed is then a candidate neighbour instead.
-            let (cells, bonds) = if frame.is_per_axis() {
-                voronoi_with(&piece, &points, metric, eps, None)
+            let neighbours = if frame.is_per_axis() {
+                None
             } else {
-                voronoi(&piece, &points, metric, eps)
+                delaunay_neighbours(&points, metric)
             };
-            finish_cut(cells, bonds, volume, eps, &mut warnings)
+            let cells = voronoi_cells(&piece, &points, metric, eps, neighbours);
+            finish_cells(cells, volume, eps, convex, &mut warnings)
         }
         Method::Slice { pieces, planes } => {
             let planes = match planes {
@@ -366,7 +503,42 @@ fn finish_cut(
     eps: f64,
     warnings: &mut Vec<String>,
 ) -> (Vec<Fragment>, Vec<Vec<u64>>, Vec<Bond>) {
-    let (pieces, bonds, merged) = merge_small(pieces, bonds, SLIVER_VOLUME_FRACTION * volume, eps);
+    let n = pieces.len();
+    let cells = Cells {
+        pieces,
+        bonds,
+        seed: vec![0; n],
+        planes: Vec::new(),
+    };
+    finish_cells(cells, volume, eps, &LocalConvex::Decomposed, warnings)
+}
+
+/// [`finish_cut`] of a Voronoi cut, the fragments' convex pieces made as `convex` says
+/// (clipped pieces by the cells each fragment was made of).
+fn finish_cells(
+    cells: Cells,
+    volume: f64,
+    eps: f64,
+    convex: &LocalConvex,
+    warnings: &mut Vec<String>,
+) -> (Vec<Fragment>, Vec<Vec<u64>>, Vec<Bond>) {
+    let Cells {
+        pieces,
+        bonds,
+        seed,
+        planes,
+    } = cells;
+    let (pieces, bonds, merged, new_id) =
+        merge_small_with(pieces, bonds, SLIVER_VOLUME_FRACTION * volume, &[], eps);
+    // Per fragment, the cells it was made of.
+    let mut made_of: Vec<Vec<u32>> = vec![Vec::new(); pieces.len()];
+    for (i, &f) in new_id.iter().enumerate() {
+        if let (Some(list), Some(&s)) = (made_of.get_mut(f as usize), seed.get(i))
+            && !list.contains(&s)
+        {
+            list.push(s);
+        }
+    }
     if merged.lonely > 0 {
         warnings.push(format!(
             "{} fragments below the sliver threshold had no other fragment to merge into",
@@ -383,17 +555,51 @@ fn finish_cut(
     // Independent per fragment, so in parallel (order kept).
     let (fragments, tags) = pieces
         .into_par_iter()
+        .zip(made_of)
         .with_max_len(1)
-        .map(|mut p| {
+        .map(|(mut p, made_of)| {
             p.weld();
-            (fragment(&p), p.tags)
+            let cells: Vec<&[Plane]> = made_of
+                .iter()
+                .filter_map(|&s| planes.get(s as usize).map(Vec::as_slice))
+                .collect();
+            (built_fragment(&p, convex, &cells, eps), p.tags)
         })
         .unzip();
     (fragments, tags, bonds)
 }
 
+/// The fragment of the closed piece `p`, its convex pieces made as `convex` says (when
+/// clipped, by `cells`, the planes of the cells it was made of).
+#[inline(never)]
+fn built_fragment(p: &Piece, convex: &LocalConvex, cells: &[&[Plane]], eps: f64) -> Fragment {
+    match convex {
+        LocalConvex::Decomposed => fragment(p),
+        LocalConvex::Fine => {
+            let mut f = fragment_without_pieces(p);
+            (f.convex_pieces, f.convex_hulls) = fine_pieces(p);
+            f
+        }
+        LocalConvex::Clipped(parts) => {
+            let mut f = fragment_without_pieces(p);
+            match inherited_pieces(p, f.volume, parts, cells, eps) {
+                Some(pieces) => (f.convex_pieces, f.convex_hulls) = pieces,
+                None => f.convex_pieces = convex_pieces(p),
+            }
+            f
+        }
+    }
+}
+
 /// A fragment from a closed cut piece.
 pub(crate) fn fragment(p: &Piece) -> Fragment {
+    let mut f = fragment_without_pieces(p);
+    f.convex_pieces = convex_pieces(p);
+    f
+}
+
+/// [`fragment`] without its convex pieces.
+fn fragment_without_pieces(p: &Piece) -> Fragment {
     let (volume, centroid, inertia) = mass_properties(&p.pos, &p.tris);
     Fragment {
         mesh: TriMesh::new(p.pos.clone(), p.tris.clone()),
@@ -401,7 +607,8 @@ pub(crate) fn fragment(p: &Piece) -> Fragment {
         // Set at the end, from the tags (see `attributes`).
         corners: Corners::default(),
         material: Vec::new(),
-        convex_pieces: convex_pieces(p),
+        convex_pieces: Vec::new(),
+        convex_hulls: Vec::new(),
         volume,
         centroid,
         inertia,

@@ -31,7 +31,7 @@ mod validate;
 
 pub use attributes::interior_material;
 pub use check::{InvalidFracture, VOLUME_TOLERANCE};
-pub use entry::{fracture, fracture_model};
+pub use entry::{fracture, fracture_fragment, fracture_model, intact};
 pub(crate) use methods::grid::fills_box;
 pub use methods::tetra::{SLIVER_QUALITY, SLIVER_VOLUME_FRACTION};
 pub use normalize::ANISOTROPY;

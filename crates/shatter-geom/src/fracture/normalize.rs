@@ -310,6 +310,7 @@ impl Frame {
             mesh: TriMesh::new(positions, g.mesh.triangles),
             interior: g.interior,
             convex_pieces,
+            convex_hulls: g.convex_hulls,
             volume: self.volume_to_world(g.volume, "a fragment's volume")?,
             centroid: self.point_to_world(g.centroid),
             inertia: self.inertia_to_world(g.inertia, "a fragment's inertia tensor")?,

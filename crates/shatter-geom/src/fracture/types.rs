@@ -25,6 +25,14 @@ pub struct Fragment {
     /// Convex pieces for collision: each a point cloud whose convex hull has a
     /// non-degenerate volume. Their union approximates the fragment.
     pub convex_pieces: Vec<Vec<DVec3>>,
+    /// Per convex piece, when known, the triangles of its hull: indices into the piece's
+    /// points, wound counter-clockwise seen from outside (a closed convex surface). A
+    /// collider then needs no hull computation, and a runtime cut clips the piece again
+    /// ([`fracture_fragment`](super::fracture_fragment)). Empty when no piece's hull is
+    /// known; otherwise one list per piece, empty for a piece whose hull is not known
+    /// (it is then computed from the points).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub convex_hulls: Vec<Vec<[u32; 3]>>,
     /// Volume of the fragment.
     pub volume: f64,
     /// Centre of mass (uniform density).

@@ -1,5 +1,5 @@
 //! The runtime-fracture benchmark: how long a cut at the impact takes
-//! ([`shatter_sim::runtime::cut_at`], the radial Voronoi cut an `on_impact` object gets
+//! ([`shatter_sim::runtime::cut_fragment`], the radial Voronoi cut an `on_impact` object gets
 //! when it is hit), on the bird and the cube, with a given number of threads (one by
 //! default: issue 16's budget is 4 ms for 50 pieces of the bird on one core). Each case is
 //! also timed inside a world ([`World::cut_now`]: the cut plus the new bodies and
@@ -154,10 +154,9 @@ pub fn run(options: BenchRuntimeOptions, ctx: &Context, quiet: bool) -> Result<R
     for case in cases() {
         let whole = runtime::whole(&Model::from_mesh(case.shape.mesh()))
             .map_err(|e| LabError::internal(format!("{}: {e}", case.name)))?;
-        let model = runtime::fragment_model(&whole, 0);
-        let at = impact(&model);
+        let at = impact(&runtime::fragment_model(&whole, 0));
         let cut = |seed: u64| {
-            runtime::cut_at(&model, at, case.pieces, seed)
+            runtime::cut_fragment(&whole, 0, at, case.pieces, seed)
                 .map_err(|e| LabError::internal(format!("{}: {e}", case.name)))
         };
         let warm = pool.install(|| cut(0))?;

@@ -185,7 +185,9 @@ pub fn prepare(fracture: &Fracture, scale: Vec3, density: f32, anchored: bool) -
 }
 
 /// The collision shapes of `fracture`'s fragments at scale `scale` (see
-/// [`Prepared::shapes`]): the hull of each convex piece.
+/// [`Prepared::shapes`]): the hull of each convex piece, built from the hull's triangles
+/// where the fragment has them ([`Fragment::convex_hulls`]: a closed surface over the
+/// piece's points), else computed from the points.
 pub fn collision_shapes(fracture: &Fracture, scale: Vec3) -> Vec<Vec<SharedShape>> {
     let s = scale.as_dvec3();
     fracture
@@ -194,13 +196,37 @@ pub fn collision_shapes(fracture: &Fracture, scale: Vec3) -> Vec<Vec<SharedShape
         .map(|f| {
             f.convex_pieces
                 .iter()
-                .filter_map(|p| {
+                .enumerate()
+                .filter_map(|(k, p)| {
                     let points: Vec<Vec3> = p.iter().map(|v| (*v * s).as_vec3()).collect();
-                    SharedShape::convex_hull(&points)
+                    let hull = f.convex_hulls.get(k).map(Vec::as_slice);
+                    match hull.filter(|tris| closed_over(tris, points.len())) {
+                        Some(tris) => SharedShape::convex_mesh(points.clone(), tris)
+                            .or_else(|| SharedShape::convex_hull(&points)),
+                        None => SharedShape::convex_hull(&points),
+                    }
                 })
                 .collect()
         })
         .collect()
+}
+
+/// Whether `tris` is a closed surface over `n` points (at least four triangles, every
+/// index below `n`, every directed edge once with its reverse once): what a convex
+/// polyhedron built from triangles needs.
+fn closed_over(tris: &[[u32; 3]], n: usize) -> bool {
+    if tris.len() < 4 || tris.iter().flatten().any(|&i| i as usize >= n) {
+        return false;
+    }
+    let mut edges: Vec<(u32, u32)> = tris
+        .iter()
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .collect();
+    edges.sort_unstable();
+    edges.windows(2).all(|w| w[0] != w[1])
+        && edges
+            .iter()
+            .all(|&(a, b)| a != b && edges.binary_search(&(b, a)).is_ok())
 }
 
 /// [`prepare`], with the collision shapes already built (by [`collision_shapes`] at the
@@ -313,6 +339,8 @@ fn scale_fragment(f: &Fragment, s: DVec3) -> Fragment {
             .iter()
             .map(|p| p.iter().map(|v| *v * s).collect())
             .collect(),
+        // A positive scale keeps a hull's triangles a convex, outward surface.
+        convex_hulls: f.convex_hulls.clone(),
         volume: f.volume * det,
         centroid: f.centroid * s,
         inertia,

@@ -1,9 +1,12 @@
 //! Runtime fracture: an object that starts whole and is cut where it is hit, and
 //! fragments that are cut again when they are hit (depth levels).
 //!
-//! The cut itself is engine-free ([`cut_at`]): a radial Voronoi fracture of one fragment
-//! around the impact point, exact cells clipped to the fragment (fine near the impact,
-//! coarse away from it), keeping the fragment's UVs, normals and materials. The
+//! The cut itself is engine-free ([`cut_fragment`]): a radial Voronoi fracture of one
+//! fragment around the impact point, exact cells clipped to the fragment (fine near the
+//! impact, coarse away from it), keeping the fragment's UVs, normals and materials. The
+//! new fragments' convex pieces are the fragment's own clipped by each cell
+//! ([`shatter_geom::fracture::fracture_fragment`]), so an intact body starts with fine
+//! convex pieces ([`whole`]) and no fragment is decomposed again. The
 //! [`World`](crate::World) decides when to cut (`world/runtime_step.rs`): a hit on a
 //! body holding a single fragment whose contact impulse passes the threshold, at a level
 //! below the object's depth. The new fragments replace the old one as a new bonded
@@ -13,14 +16,15 @@
 //! ```
 //! use shatter_geom::{DVec3, shapes};
 //! use shatter_geom::fracture::Fracture;
-//! use shatter_sim::runtime::{cut_at, fragment_model};
+//! use shatter_sim::runtime::cut_fragment;
 //!
 //! // A cube cut once into one whole piece, then cut at runtime at the middle of its top.
 //! let whole = shatter_sim::runtime::whole(&shatter_geom::model::Model::from_mesh(shapes::cube()))?;
-//! let model = fragment_model(&whole, 0);
-//! let cut: Fracture = cut_at(&model, DVec3::new(0.0, 0.5, 0.0), 20, 7)?;
+//! let cut: Fracture = cut_fragment(&whole, 0, DVec3::new(0.0, 0.5, 0.0), 20, 7)?;
 //! assert!(cut.fragments.len() > 5);
 //! assert!((cut.total_volume() - 1.0).abs() < 1e-9);
+//! // Each new fragment is a cell of the cube: one convex piece, with its hull.
+//! assert!(cut.fragments.iter().all(|f| f.convex_hulls.len() == 1));
 //! # Ok::<(), shatter_geom::fracture::FractureError>(())
 //! ```
 
@@ -153,45 +157,82 @@ pub fn fragment_model(fracture: &Fracture, f: usize) -> Model {
     }
 }
 
-/// An intact object: `model` as a single fragment, with its convex pieces and mass
-/// properties (a one-cell Voronoi fracture, so a concave model gets exact convex pieces).
+/// An intact object: `model` as a single fragment, with its mass properties and convex
+/// pieces made to be cut ([`geom::intact`]: up to 64, each with its hull), which the
+/// fragments of its cuts inherit ([`cut_fragment`]).
 pub fn whole(model: &Model) -> Result<Fracture, FractureError> {
-    geom::fracture_model(model, &geom::FractureParams::voronoi(1, 0))
+    geom::intact(model)
+}
+
+/// The parameters of a runtime cut: `pieces` radial Voronoi cells around `impact`.
+fn radial(impact: DVec3, pieces: u32, seed: u64) -> geom::FractureParams {
+    geom::FractureParams {
+        method: geom::Method::Voronoi {
+            seeds: geom::Seeds::Pattern {
+                count: pieces as usize,
+                pattern: geom::Pattern::Radial,
+                impact: Some(impact),
+            },
+        },
+        seed,
+    }
+}
+
+/// Cuts fragment `f` of `fracture` into `pieces` radial Voronoi cells around `impact` (in
+/// the fracture's frame), clipped exactly to it, as [`cut_at`] cuts its model; the new
+/// fragments' convex pieces are the fragment's own pieces clipped by each cell (see
+/// [`geom::fracture_fragment`]), not decomposed again. This is the cut the World and
+/// bevy_shatter make. An `f` past the fragments is an error.
+///
+/// ```
+/// use shatter_geom::{DVec3, model::Model, shapes};
+/// use shatter_sim::runtime::{cut_fragment, whole};
+///
+/// let bird = whole(&Model::from_mesh(shapes::bird()))?;
+/// let cut = cut_fragment(&bird, 0, DVec3::new(1.5, 0.0, 0.0), 20, 1)?;
+/// assert!(cut.fragments.len() >= 20);
+/// // Fragments of fragments inherit the same way.
+/// let again = cut_fragment(&cut, 0, cut.fragments[0].centroid, 4, 2)?;
+/// assert!(again.fragments.iter().all(|f| !f.convex_hulls.is_empty()));
+/// # Ok::<(), shatter_geom::fracture::FractureError>(())
+/// ```
+pub fn cut_fragment(
+    fracture: &Fracture,
+    f: usize,
+    impact: DVec3,
+    pieces: u32,
+    seed: u64,
+) -> Result<Fracture, FractureError> {
+    let impact = match fracture.fragments.get(f) {
+        Some(fragment) => nearest_vertex(&fragment.mesh.positions, impact),
+        None => impact,
+    };
+    let mut result = geom::fracture_fragment(fracture, f, &radial(impact, pieces, seed))?;
+    merge_interior_materials(&mut result);
+    Ok(result)
 }
 
 /// Cuts `model` into `pieces` radial Voronoi cells around `impact` (in the model's
 /// frame), clipped exactly to it. An impact outside the model is moved onto its
 /// nearest vertex, so the cells still crowd where the hit landed. The interior
 /// material is not added twice when the model already has one (a fragment cut again).
+/// Each new fragment's convex pieces are decomposed from scratch: a fragment of a
+/// [`Fracture`] is cut faster by [`cut_fragment`].
 pub fn cut_at(
     model: &Model,
     impact: DVec3,
     pieces: u32,
     seed: u64,
 ) -> Result<Fracture, FractureError> {
-    let impact = nearest_vertex(model, impact);
-    let mut result = geom::fracture_model(
-        model,
-        &geom::FractureParams {
-            method: geom::Method::Voronoi {
-                seeds: geom::Seeds::Pattern {
-                    count: pieces as usize,
-                    pattern: geom::Pattern::Radial,
-                    impact: Some(impact),
-                },
-            },
-            seed,
-        },
-    )?;
+    let impact = nearest_vertex(&model.mesh.positions, impact);
+    let mut result = geom::fracture_model(model, &radial(impact, pieces, seed))?;
     merge_interior_materials(&mut result);
     Ok(result)
 }
 
-/// The model's vertex nearest `p` (`p` itself when the model has none).
-fn nearest_vertex(model: &Model, p: DVec3) -> DVec3 {
-    model
-        .mesh
-        .positions
+/// The position nearest `p` (`p` itself when there is none).
+fn nearest_vertex(positions: &[DVec3], p: DVec3) -> DVec3 {
+    positions
         .iter()
         .copied()
         .min_by(|a, b| a.distance_squared(p).total_cmp(&b.distance_squared(p)))

@@ -1,10 +1,11 @@
 //! A runtime cut under way: what it computes, on a thread (native) or at its step (web),
 //! and the seed of each cut.
 
+use std::sync::Arc;
+
 use glam::{DVec3, Vec3};
 use rapier3d::prelude::SharedShape;
 use shatter_geom::fracture::{Fracture, FractureError};
-use shatter_geom::model::Model;
 
 use crate::runtime;
 use crate::world::settings::ObjectId;
@@ -26,19 +27,29 @@ pub(crate) struct PendingCut {
     pub job: CutJob,
 }
 
-/// What a cut computes: [`runtime::cut_at`] of these.
+/// What a cut computes: [`runtime::cut_fragment`] of these.
 pub(crate) struct CutInput {
-    model: Model,
+    /// The object's fracture (shared, not copied) and the fragment cut.
+    fracture: Arc<Fracture>,
+    fragment: usize,
     impact: DVec3,
     pieces: u32,
     seed: u64,
 }
 
 impl CutInput {
-    /// The cut of `model` at `impact` into `pieces` cells, from `seed`.
-    pub(crate) fn new(model: Model, impact: DVec3, pieces: u32, seed: u64) -> CutInput {
+    /// The cut of `fracture`'s fragment `fragment` at `impact` into `pieces` cells, from
+    /// `seed`.
+    pub(crate) fn new(
+        fracture: Arc<Fracture>,
+        fragment: usize,
+        impact: DVec3,
+        pieces: u32,
+        seed: u64,
+    ) -> CutInput {
         CutInput {
-            model,
+            fracture,
+            fragment,
             impact,
             pieces,
             seed,
@@ -47,14 +58,24 @@ impl CutInput {
 
     /// The estimate of the cut (a Voronoi fracture of its pieces).
     pub(crate) fn estimate(&self) -> shatter_geom::budget::Estimate {
-        let triangles = self.model.mesh.triangles.len() as u64;
+        let triangles = self
+            .fracture
+            .fragments
+            .get(self.fragment)
+            .map_or(0, |f| f.mesh.triangles.len() as u64);
         shatter_geom::budget::Estimate::voronoi_fracture(u64::from(self.pieces), triangles)
     }
 
     /// The cut, and its fragments' collision shapes (built here, off the simulation's
     /// thread, rather than when the cut is applied).
     pub(crate) fn run(self) -> Result<CutResult, FractureError> {
-        let fracture = runtime::cut_at(&self.model, self.impact, self.pieces, self.seed)?;
+        let fracture = runtime::cut_fragment(
+            &self.fracture,
+            self.fragment,
+            self.impact,
+            self.pieces,
+            self.seed,
+        )?;
         let shapes = crate::object::prepare::collision_shapes(&fracture, Vec3::ONE);
         Ok(CutResult { fracture, shapes })
     }

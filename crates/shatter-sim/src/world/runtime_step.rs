@@ -33,7 +33,8 @@ use crate::world::step::ContactHit;
 /// level ([`runtime::pieces_at`]) and the seed of its line.
 fn cut_input(record: &ObjectRecord, fragment: u32, impact: DVec3) -> CutInput {
     CutInput::new(
-        runtime::fragment_model(&record.prepared.fracture, fragment as usize),
+        record.prepared.fracture.clone(),
+        fragment as usize,
         impact,
         runtime::pieces_at(record.cut_pieces, record.level),
         cut_seed(record.cut_seed, fragment, record.level),

@@ -26,20 +26,11 @@ pub(crate) struct Merged {
 /// pieces: the caps they share cancel, so it is a closed 2-manifold again. A union
 /// that would not be one is not made; the next neighbour is tried, and a piece no
 /// neighbour takes is kept as it is (counted in [`Merged`]). Returns the new pieces,
-/// bonds (remapped, each pair once) and what was left unmerged.
-pub(crate) fn merge_small(
-    pieces: Vec<Piece>,
-    bonds: Vec<Bond>,
-    min_volume: f64,
-    eps: f64,
-) -> (Vec<Piece>, Vec<Bond>, Merged) {
-    let (pieces, bonds, merged, _) = merge_small_with(pieces, bonds, min_volume, &[], eps);
-    (pieces, bonds, merged)
-}
-
-/// [`merge_small`], where a piece marked in `poor` (missing marks are `false`) is also
-/// small while it is alone in its group (a sliver tetrahedron of any volume); also
-/// returns each input piece's new piece.
+/// bonds (remapped, each pair once), what was left unmerged, and each input piece's new
+/// piece.
+///
+/// A piece marked in `poor` (missing marks are `false`) is also small while it is alone
+/// in its group (a sliver tetrahedron of any volume).
 pub(crate) fn merge_small_with(
     pieces: Vec<Piece>,
     bonds: Vec<Bond>,

@@ -8,15 +8,20 @@ use glam::DVec3;
 
 use super::clip::split_keeping_faces;
 use super::edges::{Edge, for_each_edge};
+use super::polytope::Polytope;
 use super::{Piece, Plane, SURFACE, is_surface};
 use crate::util::UnionFind;
 
 /// Relative tolerance (of the fragment's size) for convexity tests.
 const CONVEX_TOL: f64 = 1e-2;
 /// Pieces smaller than this fraction of the fragment are dropped.
-const MIN_PIECE_FRACTION: f64 = 1e-3;
+pub(crate) const MIN_PIECE_FRACTION: f64 = 1e-3;
 /// At most this many convex pieces per fragment.
 const MAX_PIECES: usize = 16;
+/// At most this many convex pieces for a solid whose pieces are kept to be clipped later
+/// ([`fine_pieces`]). The bird needs about 60 to be convex within the tolerance; at 16,
+/// its pieces' hulls exceed it by a fifth.
+const FINE_MAX_PIECES: usize = 64;
 
 /// Convex pieces of a closed fragment (each with a non-degenerate volume). A fragment
 /// with no edge concave beyond the tolerance is one piece: for a connected, embedded
@@ -45,6 +50,38 @@ pub(crate) fn convex_pieces(piece: &Piece) -> Vec<Vec<DVec3>> {
     }
 }
 
+/// Convex pieces with their hulls: each piece's points, and the triangles of its hull over
+/// them (as [`crate::fracture::Fragment::convex_pieces`] and `convex_hulls`).
+pub(crate) type ConvexPieces = (Vec<Vec<DVec3>>, Vec<Vec<[u32; 3]>>);
+
+/// Convex pieces of a closed solid that are kept to be clipped later (an intact body cut
+/// at runtime, see [`super::inherit`]), each with its hull's triangles: decomposed as
+/// [`convex_pieces`] does, but into up to `FINE_MAX_PIECES`, each piece's points reduced
+/// to the corners of its hull (found exactly, from their Delaunay tetrahedralization).
+/// The hulls are left out (empty) if one cannot be found.
+pub(crate) fn fine_pieces(piece: &Piece) -> ConvexPieces {
+    let total = piece.volume();
+    let parts = if total > 0.0 {
+        decomposition_parts_with(piece, CONVEX_TOL, FINE_MAX_PIECES)
+    } else {
+        None
+    };
+    let points: Vec<Vec<DVec3>> = match parts {
+        Some(parts) => parts
+            .into_iter()
+            .filter(|p| p.volume() >= MIN_PIECE_FRACTION * total)
+            .map(|p| p.pos)
+            .collect(),
+        None => vec![piece.pos.clone()],
+    };
+    let hulls: Option<Vec<Polytope>> = points.iter().map(|p| Polytope::hull(p)).collect();
+    match hulls {
+        Some(hulls) if !hulls.is_empty() => hulls.iter().map(Polytope::to_mesh).unzip(),
+        _ if points.is_empty() => (vec![piece.pos.clone()], Vec::new()),
+        _ => (points, Vec::new()),
+    }
+}
+
 /// Volume of the tetrahedron `[a, b, c, d]` (signed).
 pub(crate) fn tet_volume(p: [DVec3; 4]) -> f64 {
     (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])) / 6.0
@@ -61,22 +98,34 @@ pub(crate) const TET_FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], 
 /// convex within the tolerance or `MAX_PIECES` is reached. The clipping is exact, so
 /// the parts cover the solid without gaps.
 pub(crate) fn decomposition_parts(piece: &Piece) -> Option<Vec<Piece>> {
-    let tol = CONVEX_TOL * super::mesh_scale(piece);
+    decomposition_parts_with(piece, CONVEX_TOL, MAX_PIECES)
+}
+
+/// [`decomposition_parts`] with its tolerance (relative to the solid's size) and the
+/// most parts it makes.
+fn decomposition_parts_with(piece: &Piece, rel_tol: f64, max_pieces: usize) -> Option<Vec<Piece>> {
+    let tol = rel_tol * super::mesh_scale(piece);
     let first = worst_face(piece, tol);
     first.1?;
     let mut parts = Vec::new();
-    decompose_into(piece, first, tol, &mut parts);
+    decompose_into(piece, first, tol, max_pieces, &mut parts);
     Some(parts)
 }
 
 /// The loop of [`decomposition_parts`]: the parts of `piece`, split worst first, into
 /// `out`.
-fn decompose_into(piece: &Piece, first: (f64, Option<Plane>), tol: f64, out: &mut Vec<Piece>) {
+fn decompose_into(
+    piece: &Piece,
+    first: (f64, Option<Plane>),
+    tol: f64,
+    max_pieces: usize,
+    out: &mut Vec<Piece>,
+) {
     let eps = 1e-10 * tol.max(f64::MIN_POSITIVE) / CONVEX_TOL;
     // (violation, face plane, piece)
     let mut work: Vec<(f64, Option<Plane>, Piece)> = vec![(first.0, first.1, piece.clone())];
     loop {
-        if work.len() >= MAX_PIECES {
+        if work.len() >= max_pieces {
             break;
         }
         let Some(k) = (0..work.len())

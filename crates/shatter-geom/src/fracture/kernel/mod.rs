@@ -7,8 +7,11 @@ pub(crate) mod clip;
 pub(crate) mod convex;
 mod edges;
 mod face;
+mod hull;
+pub(crate) mod inherit;
 mod piece;
 mod plane;
+pub(crate) mod polytope;
 pub(crate) mod union;
 
 #[cfg(test)]

@@ -210,6 +210,7 @@ fn brick(grid: &Grid, c: [u32; 3]) -> (Fragment, Vec<u64>) {
         corners: Corners::default(),
         material: Vec::new(),
         convex_pieces: vec![pos],
+        convex_hulls: Vec::new(),
         volume,
         centroid: (lo + hi) / 2.0,
         inertia,

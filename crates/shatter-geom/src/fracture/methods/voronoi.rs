@@ -10,15 +10,8 @@ use crate::fracture::kernel::clip::{clip, clip_keeping_faces};
 use crate::fracture::kernel::{Piece, Plane, SURFACE, mesh_scale};
 use crate::util::{bounds, box_corners};
 
-/// Clips `mesh` by the Voronoi cells of `seeds` under the diagonal metric `metric`
-/// (`|x|² = Σ metricᵢ xᵢ²`; all ones for the Euclidean distance). Returns the fragments
-/// (cells in seed order, components in order) and their bonds.
-///
-/// A cell is cut only by the bisectors of its Delaunay neighbours (see
-/// [`delaunay_neighbours`]), each time by the one that removes the most of what is left,
-/// so a cell costs about as many cuts as it has faces. The cells are independent and are cut in parallel (rayon; one thread where
-/// there are no threads, as in the browser); the result does not depend on the number
-/// of threads. Duplicate seeds are ignored after their first occurrence.
+/// [`voronoi_cells`] with the seeds' Delaunay neighbours, its pieces and bonds.
+#[cfg(test)]
 pub(crate) fn voronoi(
     mesh: &Piece,
     seeds: &[DVec3],
@@ -28,7 +21,8 @@ pub(crate) fn voronoi(
     voronoi_with(mesh, seeds, metric, eps, delaunay_neighbours(seeds, metric))
 }
 
-/// [`voronoi`] with the neighbours given (`None`: every other seed is a candidate).
+/// [`voronoi_cells`]' pieces and bonds.
+#[cfg(test)]
 pub(crate) fn voronoi_with(
     mesh: &Piece,
     seeds: &[DVec3],
@@ -36,6 +30,42 @@ pub(crate) fn voronoi_with(
     eps: f64,
     neighbours: Option<(Vec<Vec<u32>>, Vec<u32>)>,
 ) -> (Vec<Piece>, Vec<Bond>) {
+    let cells = voronoi_cells(mesh, seeds, metric, eps, neighbours);
+    (cells.pieces, cells.bonds)
+}
+
+/// A Voronoi cut with what made each piece: the pieces and their bonds, each piece's
+/// seed, and each seed's cell planes.
+pub(crate) struct Cells {
+    /// The cells' pieces (cells in seed order, components in order).
+    pub pieces: Vec<Piece>,
+    /// Their bonds.
+    pub bonds: Vec<Bond>,
+    /// Per piece, the seed whose cell it is (part of).
+    pub seed: Vec<u32>,
+    /// Per seed, the planes its cell is cut by (the cell is the intersection of their
+    /// negative sides; empty for a repeated seed or an empty cell).
+    pub planes: Vec<Vec<Plane>>,
+}
+
+/// Clips `mesh` by the Voronoi cells of `seeds` under the diagonal metric `metric`
+/// (`|x|² = Σ metricᵢ xᵢ²`; all ones for the Euclidean distance). Returns the fragments
+/// (cells in seed order, components in order), their bonds, each one's seed and each
+/// seed's planes ([`Cells`]).
+///
+/// A cell is cut only by the bisectors of its Delaunay neighbours (`neighbours`, see
+/// [`delaunay_neighbours`]; `None`: every other seed is a candidate), each time by the
+/// one that removes the most of what is left, so a cell costs about as many cuts as it
+/// has faces. The cells are independent and are cut in parallel (rayon; one thread where
+/// there are no threads, as in the browser); the result does not depend on the number
+/// of threads. Duplicate seeds are ignored after their first occurrence.
+pub(crate) fn voronoi_cells(
+    mesh: &Piece,
+    seeds: &[DVec3],
+    metric: DVec3,
+    eps: f64,
+    neighbours: Option<(Vec<Vec<u32>>, Vec<u32>)>,
+) -> Cells {
     let k = seeds.len() as u64;
     let bisector = |i: usize, j: usize| {
         let (si, sj) = (seeds[i], seeds[j]);
@@ -47,7 +77,7 @@ pub(crate) fn voronoi_with(
     let bounding_box = box_piece(mesh);
     // One task per cell (not runs of cells): a thread descheduled by the host then
     // holds up one cell, not a run of them the other threads cannot steal.
-    let per_seed: Vec<Vec<Piece>> = (0..seeds.len())
+    let per_seed: Vec<(Vec<Piece>, Vec<Plane>)> = (0..seeds.len())
         .into_par_iter()
         .with_max_len(1)
         .map(|i| {
@@ -60,55 +90,19 @@ pub(crate) fn voronoi_with(
                 &bisector,
                 eps,
             ) else {
-                return Vec::new();
+                return (Vec::new(), Vec::new());
             };
-            // Each time the plane that cuts away the most of what is left (counted in
-            // vertices), so the pieces shrink fast and later cuts have less to go
-            // through; a plane with no vertex beyond it cannot cut.
-            let mut planes = planes;
-            let mut cell: Option<Piece> = None;
-            while !planes.is_empty() {
-                let current = cell.as_ref().unwrap_or(mesh);
-                // Counted on at most ~128 of the vertices (the choice is only an order;
-                // every plane still cuts), and on all of them before concluding that
-                // no plane has a vertex beyond it.
-                let best_of = |stride: usize| {
-                    let beyond = |plane: &Plane| {
-                        current
-                            .pos
-                            .iter()
-                            .step_by(stride)
-                            .filter(|&&p| plane.eval(p) > 0.0)
-                            .count()
-                    };
-                    planes
-                        .iter()
-                        .enumerate()
-                        .map(|(k, plane)| (k, beyond(plane)))
-                        .fold((0, 0), |acc, x| if x.1 > acc.1 { x } else { acc })
-                };
-                let mut best_count = best_of((current.pos.len() / 128).max(1));
-                if best_count.1 == 0 {
-                    best_count = best_of(1);
-                }
-                let (best, count) = best_count;
-                if count == 0 {
-                    break;
-                }
-                let plane = planes.swap_remove(best);
-                if let Some(next) = clip_keeping_faces(current, &plane, eps) {
-                    if next.is_empty() {
-                        return Vec::new();
-                    }
-                    cell = Some(next);
-                }
-            }
-            let mut cell = cell.unwrap_or_else(|| mesh.clone());
-            cell.close_faces();
-            cell.components()
+            (cut_cell(mesh, planes.clone(), eps), planes)
         })
         .collect();
-    let cells: Vec<Piece> = per_seed.into_iter().flatten().collect();
+    let mut cells: Vec<Piece> = Vec::new();
+    let mut seed = Vec::new();
+    let mut planes = Vec::with_capacity(per_seed.len());
+    for (i, (pieces, p)) in per_seed.into_iter().enumerate() {
+        seed.extend(std::iter::repeat_n(i as u32, pieces.len()));
+        cells.extend(pieces);
+        planes.push(p);
+    }
     let plane_of = |tag: u64| {
         let (i, j) = ((tag / k) as usize, (tag % k) as usize);
         let p = bisector(i, j);
@@ -117,7 +111,60 @@ pub(crate) fn voronoi_with(
     };
     let scale = mesh_scale(mesh);
     let bonds = cap_bonds(&cells, plane_of, 1e-12 * scale * scale);
-    (cells, bonds)
+    Cells {
+        pieces: cells,
+        bonds,
+        seed,
+        planes,
+    }
+}
+
+/// `mesh` within the cell that is the negative side of all `planes`, one piece per
+/// connected component, caps triangulated: cut each time by the plane that cuts away
+/// the most of what is left (counted in vertices), so the pieces shrink fast and later
+/// cuts have less to go through; a plane with no vertex beyond it cannot cut.
+#[inline(never)]
+fn cut_cell(mesh: &Piece, mut planes: Vec<Plane>, eps: f64) -> Vec<Piece> {
+    let mut cell: Option<Piece> = None;
+    while !planes.is_empty() {
+        let current = cell.as_ref().unwrap_or(mesh);
+        // Counted on at most ~128 of the vertices (the choice is only an order;
+        // every plane still cuts), and on all of them before concluding that
+        // no plane has a vertex beyond it.
+        let best_of = |stride: usize| {
+            let beyond = |plane: &Plane| {
+                current
+                    .pos
+                    .iter()
+                    .step_by(stride)
+                    .filter(|&&p| plane.eval(p) > 0.0)
+                    .count()
+            };
+            planes
+                .iter()
+                .enumerate()
+                .map(|(k, plane)| (k, beyond(plane)))
+                .fold((0, 0), |acc, x| if x.1 > acc.1 { x } else { acc })
+        };
+        let mut best_count = best_of((current.pos.len() / 128).max(1));
+        if best_count.1 == 0 {
+            best_count = best_of(1);
+        }
+        let (best, count) = best_count;
+        if count == 0 {
+            break;
+        }
+        let plane = planes.swap_remove(best);
+        if let Some(next) = clip_keeping_faces(current, &plane, eps) {
+            if next.is_empty() {
+                return Vec::new();
+            }
+            cell = Some(next);
+        }
+    }
+    let mut cell = cell.unwrap_or_else(|| mesh.clone());
+    cell.close_faces();
+    cell.components()
 }
 
 /// The planes that bound seed `i`'s cell, nearest first (the order in which equally good

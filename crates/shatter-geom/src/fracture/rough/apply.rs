@@ -167,6 +167,7 @@ pub(crate) fn rebuild(
         corners,
         material,
         convex_pieces: f.convex_pieces.clone(),
+        convex_hulls: f.convex_hulls.clone(),
         volume: f.volume,
         centroid: f.centroid,
         inertia: f.inertia,

@@ -373,6 +373,8 @@ fn finish(
         if depth == 0.0 {
             continue;
         }
+        // Cut back, the pieces' hulls are no longer known.
+        new.convex_hulls.clear();
         let frame = &cap.core.frame;
         let (mut blo, mut bhi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
         for &q in &cap.core.points {

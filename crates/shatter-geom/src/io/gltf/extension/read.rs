@@ -312,6 +312,7 @@ impl Reader<'_> {
             corners,
             material,
             convex_pieces,
+            convex_hulls: Vec::new(),
             volume,
             centroid: DVec3::from(centroid),
             inertia: DMat3::from_cols_array(&inertia),

@@ -1,0 +1,278 @@
+//! The convex hull of a point set: incremental, with exact orientations. A convex piece
+//! of the decomposition is convex only within its tolerance; its hull is what the
+//! collider is, and what a runtime cut clips ([`super::polytope::Polytope`]).
+
+use glam::DVec3;
+
+use crate::delaunay::FACES;
+use crate::util::FastMap;
+
+/// How far in front of the hull (relative to the points' extent) a point must lie to be
+/// added; nearer ones are left out. Far above rounding, so that every new triangle is far
+/// from flat and its plane is known to about 1e-9 of the extent; far below anything a
+/// collider feels.
+const HULL_TOLERANCE: f64 = 1e-7;
+
+/// The outward triangles of the convex hull of `points` (indices into `points`), or
+/// `None` when the points span no volume.
+///
+/// Points are added one at a time. A point more than [`HULL_TOLERANCE`] in front of some
+/// face replaces the faces it lies that far in front of, the connected region around the
+/// face it is farthest in front of, by a fan from the point to the region's boundary. A
+/// point inside the hull, on it or nearer to it changes nothing (the hull may then miss
+/// it by that much). Should rounding still leave the result other than a closed surface
+/// with every point behind every face (within twice the tolerance), the exact hull of
+/// the points' Delaunay tetrahedralization is taken instead.
+pub(crate) fn hull_triangles(points: &[DVec3]) -> Option<Vec<[u32; 3]>> {
+    if points.len() < 4 {
+        return None;
+    }
+    let (lo, hi) = crate::util::bounds(points);
+    let tol = HULL_TOLERANCE * (hi - lo).length();
+    let Some(first) = first_tetrahedron(points, tol) else {
+        return exact_hull(points);
+    };
+    let mut h = Hull {
+        pts: points,
+        faces: Vec::new(),
+        planes: Vec::new(),
+        alive: Vec::new(),
+        edges: FastMap::default(),
+        tol,
+    };
+    for face in FACES {
+        h.add(face.map(|k| first[k]));
+    }
+    let mut seen = Vec::new();
+    let mut stack = Vec::new();
+    let mut horizon = Vec::new();
+    let mut state: Vec<u8> = Vec::new();
+    for p in 0..points.len() as u32 {
+        if first.contains(&p) {
+            continue;
+        }
+        // The face `p` is farthest in front of: in a nearly flat region, a face tilted by
+        // rounding may be seen apart from the faces truly seen.
+        let Some(start) = (0..h.faces.len())
+            .filter(|&f| h.alive[f])
+            .map(|f| (h.height(f, p), f))
+            .filter(|&(d, _)| d > h.tol)
+            .max_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(_, f)| f)
+        else {
+            continue;
+        };
+        // The faces `p` sees (state 1), flooded from `start`; state 2: checked, unseen.
+        state.clear();
+        state.resize(h.faces.len(), 0);
+        seen.clear();
+        horizon.clear();
+        state[start] = 1;
+        stack.push(start);
+        while let Some(f) = stack.pop() {
+            seen.push(f);
+            let tri = h.faces[f];
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                let Some(&g) = h.edges.get(&(b, a)) else {
+                    return exact_hull(points);
+                };
+                let g = g as usize;
+                if state[g] == 0 {
+                    state[g] = if h.height(g, p) > h.tol { 1 } else { 2 };
+                    if state[g] == 1 {
+                        stack.push(g);
+                    }
+                }
+                if state[g] == 2 {
+                    horizon.push((a, b));
+                }
+            }
+        }
+        for &f in &seen {
+            h.remove(f);
+        }
+        for &(a, b) in &horizon {
+            if h.edges.contains_key(&(a, b)) {
+                // The seen region was not a disc: its boundary runs twice through a
+                // vertex.
+                return exact_hull(points);
+            }
+            h.add([a, b, p]);
+        }
+    }
+    let tris: Vec<[u32; 3]> = (0..h.faces.len())
+        .filter(|&f| h.alive[f])
+        .map(|f| h.faces[f])
+        .collect();
+    let mut corners: Vec<u32> = tris.iter().flatten().copied().collect();
+    corners.sort_unstable();
+    corners.dedup();
+    let convex = (0..h.faces.len())
+        .filter(|&f| h.alive[f])
+        .all(|f| corners.iter().all(|&v| h.height(f, v) <= 2.0 * tol));
+    if h.edges.len() != 3 * tris.len() || !convex {
+        return exact_hull(points);
+    }
+    Some(tris)
+}
+
+/// The exact hull: the faces of the points' Delaunay tetrahedralization that have no
+/// neighbour (slower: the exact predicates are slow on the many points of a piece that
+/// lie in one plane).
+fn exact_hull(points: &[DVec3]) -> Option<Vec<[u32; 3]>> {
+    let t = crate::delaunay::tetrahedralize(points).ok()?;
+    Some(t.hull_faces())
+}
+
+/// The hull being built: its triangles (removed ones kept, not alive), their planes,
+/// and the face of each directed edge of the alive ones.
+struct Hull<'a> {
+    pts: &'a [DVec3],
+    faces: Vec<[u32; 3]>,
+    /// Per face, its unit outward normal and offset.
+    planes: Vec<(DVec3, f64)>,
+    alive: Vec<bool>,
+    edges: FastMap<(u32, u32), u32>,
+    /// How far in front of a face a point must lie to see it.
+    tol: f64,
+}
+
+impl Hull<'_> {
+    /// How far point `p` lies in front of face `f`.
+    fn height(&self, f: usize, p: u32) -> f64 {
+        let (n, d) = self.planes[f];
+        n.dot(self.pts[p as usize]) - d
+    }
+
+    fn add(&mut self, tri: [u32; 3]) {
+        let f = self.faces.len() as u32;
+        for k in 0..3 {
+            self.edges.insert((tri[k], tri[(k + 1) % 3]), f);
+        }
+        let [a, b, c] = tri.map(|i| self.pts[i as usize]);
+        let n = (b - a).cross(c - a).normalize_or_zero();
+        self.planes.push((n, n.dot(a)));
+        self.faces.push(tri);
+        self.alive.push(true);
+    }
+
+    fn remove(&mut self, f: usize) {
+        let tri = self.faces[f];
+        for k in 0..3 {
+            let e = (tri[k], tri[(k + 1) % 3]);
+            if self.edges.get(&e) == Some(&(f as u32)) {
+                self.edges.remove(&e);
+            }
+        }
+        self.alive[f] = false;
+    }
+}
+
+/// Four points spanning a tetrahedron whose faces in [`FACES`] order are outward: two
+/// far apart, the one farthest from their line, the one farthest from their plane;
+/// `None` when that one lies within `tol` of the plane (the points are flat, as far as
+/// this hull can tell).
+fn first_tetrahedron(pts: &[DVec3], tol: f64) -> Option<[u32; 4]> {
+    let farthest = |score: &dyn Fn(usize) -> f64| {
+        (0..pts.len()).max_by(|&i, &j| score(i).total_cmp(&score(j)).then(j.cmp(&i)))
+    };
+    let a = farthest(&|i| -pts[i].x)?;
+    let b = farthest(&|i| pts[i].distance_squared(pts[a]))?;
+    let ab = pts[b] - pts[a];
+    let c = farthest(&|i| ab.cross(pts[i] - pts[a]).length_squared())?;
+    let n = ab.cross(pts[c] - pts[a]).try_normalize()?;
+    let d = farthest(&|i| n.dot(pts[i] - pts[a]).abs())?;
+    let height = n.dot(pts[d] - pts[a]);
+    if height.abs() <= tol {
+        return None;
+    }
+    let [a, b, c, d] = [a, b, c, d].map(|i| i as u32);
+    // `d` in front of `a b c` (counter-clockwise seen from `d`) is the positive order.
+    Some(if height > 0.0 {
+        [a, b, c, d]
+    } else {
+        [b, a, c, d]
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::util::box_corners;
+
+    fn volume(points: &[DVec3], tris: &[[u32; 3]]) -> f64 {
+        tris.iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| points[i as usize]);
+                a.dot(b.cross(c)) / 6.0
+            })
+            .sum()
+    }
+
+    #[test]
+    fn the_hull_of_a_cube_with_points_inside_and_on_its_faces_is_the_cube() {
+        let mut pts = box_corners(DVec3::ZERO, DVec3::ONE);
+        // Inside, on a face's centre, on an edge's middle.
+        pts.extend([
+            DVec3::splat(0.5),
+            DVec3::new(0.5, 0.5, 1.0),
+            DVec3::new(0.5, 0.0, 0.0),
+        ]);
+        let tris = hull_triangles(&pts).unwrap();
+        assert!((volume(&pts, &tris) - 1.0).abs() < 1e-12);
+        let mut used: Vec<u32> = tris.iter().flatten().copied().collect();
+        used.sort_unstable();
+        used.dedup();
+        // The corners come first: the points on the faces and inside add nothing.
+        assert_eq!(used, (0..8).collect::<Vec<u32>>(), "{tris:?}");
+        // Added first, points on the boundary may stay corners; the inner one never.
+        pts.rotate_right(3);
+        let tris = hull_triangles(&pts).unwrap();
+        assert!((volume(&pts, &tris) - 1.0).abs() < 1e-12);
+        assert!(tris.iter().flatten().all(|&i| i != 0), "{tris:?}");
+        // Closed: every directed edge once, with its reverse.
+        let mut edges: Vec<(u32, u32)> = tris
+            .iter()
+            .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+            .collect();
+        edges.sort_unstable();
+        assert!(edges.windows(2).all(|w| w[0] != w[1]));
+        assert!(
+            edges
+                .iter()
+                .all(|&(a, b)| edges.binary_search(&(b, a)).is_ok())
+        );
+    }
+
+    #[test]
+    fn points_in_a_plane_have_no_hull() {
+        let pts = [
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::Y,
+            DVec3::X + DVec3::Y,
+            DVec3::X * 2.0,
+        ];
+        assert!(hull_triangles(&pts).is_none());
+        assert!(hull_triangles(&pts[..3]).is_none());
+    }
+
+    #[test]
+    fn the_hull_of_points_on_a_sphere_has_them_all_as_corners() {
+        // A Fibonacci sphere: every point is extreme.
+        let n = 200;
+        let pts: Vec<DVec3> = (0..n)
+            .map(|i| {
+                let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+                let r = (1.0 - z * z).sqrt();
+                let phi = i as f64 * 2.399_963_229_728_653;
+                DVec3::new(r * phi.cos(), r * phi.sin(), z)
+            })
+            .collect();
+        let tris = hull_triangles(&pts).unwrap();
+        assert_eq!(tris.len(), 2 * n - 4);
+        let v = volume(&pts, &tris);
+        assert!(v > 4.0 && v < 4.0 / 3.0 * std::f64::consts::PI, "{v}");
+    }
+}

@@ -1,0 +1,598 @@
+//! Convex polytopes clipped by planes: the collision pieces of a fragment cut from a
+//! fragment that already has convex pieces.
+//!
+//! A Voronoi cell is convex and so is a convex piece, so where a cell meets a piece is a
+//! convex polytope: the piece's faces clipped by the cell's planes, one plane after the
+//! other. That needs no decomposition and leaves no hull to compute: the polytope's faces
+//! are its hull.
+
+use glam::DVec3;
+
+use super::Plane;
+use super::hull::hull_triangles;
+use crate::util::{FastMap, UnionFind};
+
+/// A convex polytope: its corners and its faces, each face a convex polygon of corner
+/// indices wound counter-clockwise seen from outside.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct Polytope {
+    pub pos: Vec<DVec3>,
+    /// The faces' corners, face after face: face `f` is `corners[start[f]..start[f + 1]]`.
+    corners: Vec<u32>,
+    start: Vec<u32>,
+}
+
+/// Buffers a run of [`Polytope::clip_into`] reuses.
+#[derive(Debug, Default)]
+pub(crate) struct Scratch {
+    s: Vec<f64>,
+    side: Vec<i8>,
+    remap: Vec<u32>,
+    /// Per corner of the result, whether it lies on the plane.
+    on: Vec<bool>,
+    crossed: Vec<((u32, u32), u32)>,
+    rim: Vec<(u32, u32)>,
+    /// Polytopes done with, whose buffers the next results reuse.
+    pool: Vec<Polytope>,
+}
+
+impl Scratch {
+    /// An empty polytope, with the buffers of one given back if there is one.
+    pub fn take(&mut self) -> Polytope {
+        self.pool.pop().unwrap_or_default()
+    }
+
+    /// Gives `p`'s buffers back for [`Scratch::take`].
+    pub fn give(&mut self, p: Polytope) {
+        self.pool.push(p);
+    }
+}
+
+/// What [`Polytope::clip_into`] did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Outcome {
+    /// The polytope lies on the kept side: nothing written.
+    Unchanged,
+    /// Nothing lies strictly on the kept side: nothing written.
+    Empty,
+    /// The part on the kept side is in `out`.
+    Cut,
+}
+
+/// What a plane does to a polytope ([`Polytope::clip`]).
+#[cfg(test)]
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Clipped {
+    /// The polytope lies on the kept side (within the tolerance): it stays as it is.
+    Unchanged,
+    /// Nothing lies strictly on the kept side.
+    Empty,
+    /// The part on the kept side.
+    Cut(Polytope),
+}
+
+/// Where a corner lies: strictly on the kept side (negative), on the plane, or beyond.
+const IN: i8 = -1;
+const ON: i8 = 0;
+const OUT: i8 = 1;
+
+impl Polytope {
+    /// The polytope bounded by `tris` (outward triangles over `pos`, a closed convex
+    /// surface), neighbouring triangles in one plane joined into one face (a hull's flat
+    /// regions come as many triangles; cut as one polygon, a region gains no corners
+    /// along the cut where its inner edges cross it). Corners no face uses are dropped.
+    /// `None` when an index is out of range or there are fewer than four triangles.
+    pub fn from_triangles(pos: &[DVec3], tris: &[[u32; 3]]) -> Option<Polytope> {
+        if tris.len() < 4 || tris.iter().flatten().any(|&i| i as usize >= pos.len()) {
+            return None;
+        }
+        let (corners, start) = merged_faces(pos, tris);
+        let mut p = Polytope {
+            pos: pos.to_vec(),
+            corners,
+            start,
+        };
+        p.compact();
+        Some(p)
+    }
+
+    /// The convex hull of `points` ([`hull_triangles`]); `None` when the points span no
+    /// volume.
+    pub fn hull(points: &[DVec3]) -> Option<Polytope> {
+        Polytope::from_triangles(points, &hull_triangles(points)?)
+    }
+
+    /// The box `[lo, hi]`.
+    pub fn cuboid(lo: DVec3, hi: DVec3) -> Polytope {
+        let quads: [u32; 24] = [
+            0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5,
+        ];
+        Polytope {
+            pos: crate::util::box_corners(lo, hi),
+            corners: quads.to_vec(),
+            start: (0..=6).map(|f| 4 * f).collect(),
+        }
+    }
+
+    /// The plane of each face (through its first corner, normal from its corners by
+    /// Newell's method, unit length, outward): the polytope is the negative side of
+    /// them all. A face flat within rounding (its area under `1e-12` of its longest
+    /// edge squared) bounds nothing and has no plane.
+    pub fn face_planes(&self) -> Vec<Plane> {
+        self.faces()
+            .filter_map(|f| {
+                let mut n = DVec3::ZERO;
+                let mut longest: f64 = 0.0;
+                for (k, &a) in f.iter().enumerate() {
+                    let (p, q) = (
+                        self.pos[a as usize],
+                        self.pos[f[(k + 1) % f.len()] as usize],
+                    );
+                    n += p.cross(q);
+                    longest = longest.max(p.distance_squared(q));
+                }
+                let area2 = n.length();
+                if area2.is_nan() || area2 <= 2e-12 * longest {
+                    return None;
+                }
+                let n = n.normalize();
+                Some(Plane {
+                    n,
+                    d: n.dot(self.pos[f[0] as usize]),
+                    tag: 0,
+                })
+            })
+            .collect()
+    }
+
+    /// The faces, each a slice of corner indices.
+    pub fn faces(&self) -> impl Iterator<Item = &[u32]> + '_ {
+        self.start
+            .windows(2)
+            .map(|w| &self.corners[w[0] as usize..w[1] as usize])
+    }
+
+    /// The corners and the faces as triangles (outward): each face fanned from its first
+    /// corner, or, when a fan triangle would be nearly flat (corners in a line along
+    /// the face's edge), from a new corner at the face's centre, so no triangle is
+    /// (nearly) flat unless an edge is.
+    pub fn to_mesh(&self) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+        let mut pos = self.pos.clone();
+        let mut tris = Vec::with_capacity(self.corners.len());
+        for f in self.faces() {
+            let at = |i: u32| self.pos[i as usize];
+            let flat = |a: DVec3, b: DVec3, c: DVec3| {
+                let (u, v) = (b - a, c - a);
+                u.cross(v).length_squared() <= 1e-12 * u.length_squared() * v.length_squared()
+            };
+            let fan_is_flat =
+                (1..f.len().saturating_sub(1)).any(|k| flat(at(f[0]), at(f[k]), at(f[k + 1])));
+            if !fan_is_flat || f.len() < 4 {
+                for k in 1..f.len().saturating_sub(1) {
+                    tris.push([f[0], f[k], f[k + 1]]);
+                }
+                continue;
+            }
+            let centre = f.iter().map(|&i| at(i)).sum::<DVec3>() / f.len() as f64;
+            let c = pos.len() as u32;
+            pos.push(centre);
+            for (k, &a) in f.iter().enumerate() {
+                tris.push([c, a, f[(k + 1) % f.len()]]);
+            }
+        }
+        (pos, tris)
+    }
+
+    /// The volume enclosed by the faces.
+    pub fn volume(&self) -> f64 {
+        let Some(&o) = self.pos.first() else {
+            return 0.0;
+        };
+        let at = |i: u32| self.pos[i as usize] - o;
+        let mut six = 0.0;
+        for f in self.faces() {
+            let a = at(f[0]);
+            for k in 1..f.len().saturating_sub(1) {
+                six += a.dot(at(f[k]).cross(at(f[k + 1])));
+            }
+        }
+        six / 6.0
+    }
+
+    /// The least and greatest coordinates of the corners.
+    pub fn bounds(&self) -> (DVec3, DVec3) {
+        crate::util::bounds(&self.pos)
+    }
+
+    /// The part of the polytope on the negative side of `plane` (`n · x < d`); corners
+    /// within `eps · |n|` of the plane count as lying on it. See [`Polytope::clip_into`].
+    #[cfg(test)]
+    pub fn clip(&self, plane: &Plane, eps: f64) -> Clipped {
+        let mut out = Polytope::default();
+        match self.clip_into(plane, eps, &mut Scratch::default(), &mut out) {
+            Outcome::Unchanged => Clipped::Unchanged,
+            Outcome::Empty => Clipped::Empty,
+            Outcome::Cut => Clipped::Cut(out),
+        }
+    }
+
+    /// [`Polytope::clip`], the part kept written to `out` (when it is [`Outcome::Cut`]),
+    /// with `scratch`'s buffers: a loop of cuts allocates nothing once they have grown.
+    ///
+    /// Each face keeps its corners on the kept side or on the plane, and gains the point
+    /// where each of its edges crosses the plane (computed once per edge, from its
+    /// lower-indexed end, so both faces of the edge share it). The new face, the cap,
+    /// is bounded by the kept faces' edges that lie in the plane and are not shared by
+    /// two kept faces: chained, reversed, they give its polygon. (Should rounding keep
+    /// them from making one loop, the cap is instead every corner in the plane sorted by
+    /// angle around their centroid: they all lie on the boundary of the convex cap.)
+    /// Faces lying in the plane are left out: the cap replaces them. Corners of the
+    /// polytope are numbered in order of first use by the faces.
+    pub fn clip_into(
+        &self,
+        plane: &Plane,
+        eps: f64,
+        scratch: &mut Scratch,
+        out: &mut Polytope,
+    ) -> Outcome {
+        let tol = eps * plane.n.length();
+        let Scratch {
+            s,
+            side,
+            remap,
+            on,
+            crossed,
+            rim,
+            ..
+        } = scratch;
+        s.clear();
+        side.clear();
+        let (mut any_in, mut any_out) = (false, false);
+        for &p in &self.pos {
+            let v = plane.eval(p);
+            let (v, k) = if v.abs() <= tol {
+                (0.0, ON)
+            } else if v < 0.0 {
+                any_in = true;
+                (v, IN)
+            } else {
+                any_out = true;
+                (v, OUT)
+            };
+            s.push(v);
+            side.push(k);
+        }
+        if !any_out {
+            return Outcome::Unchanged;
+        }
+        if !any_in {
+            return Outcome::Empty;
+        }
+        remap.clear();
+        remap.resize(self.pos.len(), u32::MAX);
+        crossed.clear();
+        rim.clear();
+        on.clear();
+        out.pos.clear();
+        out.corners.clear();
+        out.start.clear();
+        out.start.push(0);
+        for f in self.faces() {
+            let first = out.corners.len();
+            let mut all_on = true;
+            for (k, &a) in f.iter().enumerate() {
+                let b = f[(k + 1) % f.len()];
+                let (ka, kb) = (side[a as usize], side[b as usize]);
+                all_on &= ka == ON;
+                if ka != OUT {
+                    let r = &mut remap[a as usize];
+                    if *r == u32::MAX {
+                        *r = out.pos.len() as u32;
+                        out.pos.push(self.pos[a as usize]);
+                        on.push(ka == ON);
+                    }
+                    out.corners.push(*r);
+                }
+                if ka * kb == -1 {
+                    let key = (a.min(b), a.max(b));
+                    let x = match crossed.iter().find(|(e, _)| *e == key) {
+                        Some(&(_, x)) => x,
+                        None => {
+                            let (i, j) = (key.0 as usize, key.1 as usize);
+                            let t = s[i] / (s[i] - s[j]);
+                            out.pos.push(self.pos[i] + (self.pos[j] - self.pos[i]) * t);
+                            on.push(true);
+                            let x = (out.pos.len() - 1) as u32;
+                            crossed.push((key, x));
+                            x
+                        }
+                    };
+                    out.corners.push(x);
+                }
+            }
+            let kept = &out.corners[first..];
+            if kept.len() >= 3 && !all_on {
+                for (k, &u) in kept.iter().enumerate() {
+                    let v = kept[(k + 1) % kept.len()];
+                    if on[u as usize] && on[v as usize] {
+                        rim.push((u, v));
+                    }
+                }
+                out.start.push(out.corners.len() as u32);
+            } else {
+                out.corners.truncate(first);
+            }
+        }
+        // The cap's boundary: the rim edges without their reverse, each walked back.
+        let mut k = 0;
+        while k < rim.len() {
+            let (u, v) = rim[k];
+            if let Some(m) = rim.iter().position(|&e| e == (v, u)) {
+                rim.swap_remove(m.max(k));
+                rim.swap_remove(m.min(k));
+            } else {
+                k += 1;
+            }
+        }
+        let first = out.corners.len();
+        if let Some(&(u0, v0)) = rim.first() {
+            // Walk v → u for each edge (u, v): from v0 to u0, then on from u0.
+            out.corners.push(v0);
+            let mut at = u0;
+            while at != v0 && out.corners.len() - first < rim.len() {
+                out.corners.push(at);
+                match rim.iter().find(|&&(_, v)| v == at) {
+                    Some(&(u, _)) => at = u,
+                    None => break,
+                }
+            }
+            if at != v0 || out.corners.len() - first != rim.len() {
+                out.corners.truncate(first);
+                sorted_cap(&out.pos, on, plane, &mut out.corners);
+            }
+        }
+        if out.corners.len() - first >= 3 {
+            out.start.push(out.corners.len() as u32);
+        } else {
+            out.corners.truncate(first);
+        }
+        if out.start.len() < 5 {
+            // Fewer than four faces: flat, within the tolerance.
+            return Outcome::Empty;
+        }
+        Outcome::Cut
+    }
+
+    /// Drops the corners no face uses, keeping the others' order.
+    fn compact(&mut self) {
+        let mut remap = vec![u32::MAX; self.pos.len()];
+        for &c in &self.corners {
+            remap[c as usize] = 0;
+        }
+        let mut next = 0u32;
+        let mut pos = Vec::with_capacity(self.pos.len());
+        for (i, r) in remap.iter_mut().enumerate() {
+            if *r == 0 {
+                *r = next;
+                next += 1;
+                pos.push(self.pos[i]);
+            }
+        }
+        if pos.len() == self.pos.len() {
+            return;
+        }
+        for c in &mut self.corners {
+            *c = remap[*c as usize];
+        }
+        self.pos = pos;
+    }
+}
+
+/// The corners of `pos` marked `on` the plane, by angle around their centroid seen from
+/// the plane's positive side, appended to `corners` (the cap's polygon when the rim does
+/// not chain).
+fn sorted_cap(pos: &[DVec3], on: &[bool], plane: &Plane, corners: &mut Vec<u32>) {
+    let cap: Vec<u32> = (0..pos.len() as u32).filter(|&i| on[i as usize]).collect();
+    if cap.len() < 3 {
+        return;
+    }
+    let centre = cap.iter().map(|&i| pos[i as usize]).sum::<DVec3>() / cap.len() as f64;
+    let n = plane.n.normalize();
+    let u = n.any_orthonormal_vector();
+    let v = n.cross(u);
+    let mut keyed: Vec<(f64, u32)> = cap
+        .iter()
+        .map(|&i| {
+            let d = pos[i as usize] - centre;
+            (d.dot(v).atan2(d.dot(u)), i)
+        })
+        .collect();
+    keyed.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    corners.extend(keyed.into_iter().map(|(_, i)| i));
+}
+
+/// Neighbouring triangles whose normals differ by under this (`1 − cos`, about 1.4e-6
+/// radians) are one face.
+const COPLANAR: f64 = 1e-12;
+
+/// The faces of the closed surface `tris` over `pos`: each group of neighbouring
+/// triangles in one plane (within [`COPLANAR`]) as one polygon, its boundary walked in
+/// the triangles' order; a group whose boundary is not one simple loop stays triangles.
+/// Returns the faces' corners and starts, as in [`Polytope`].
+fn merged_faces(pos: &[DVec3], tris: &[[u32; 3]]) -> (Vec<u32>, Vec<u32>) {
+    let normal: Vec<DVec3> = tris
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| pos[i as usize]);
+            (b - a).cross(c - a).normalize_or_zero()
+        })
+        .collect();
+    let mut across: FastMap<(u32, u32), u32> = FastMap::default();
+    across.reserve(3 * tris.len());
+    for (t, tri) in tris.iter().enumerate() {
+        for k in 0..3 {
+            across.insert((tri[k], tri[(k + 1) % 3]), t as u32);
+        }
+    }
+    let mut groups = UnionFind::new(tris.len());
+    for (t, tri) in tris.iter().enumerate() {
+        for k in 0..3 {
+            if let Some(&u) = across.get(&(tri[(k + 1) % 3], tri[k]))
+                && normal[t].dot(normal[u as usize]) >= 1.0 - COPLANAR
+            {
+                groups.union(t, u as usize);
+            }
+        }
+    }
+    let mut members: Vec<Vec<u32>> = vec![Vec::new(); tris.len()];
+    for t in 0..tris.len() {
+        members[groups.find(t)].push(t as u32);
+    }
+    let (mut corners, mut start) = (Vec::with_capacity(3 * tris.len()), vec![0u32]);
+    let mut next: FastMap<u32, u32> = FastMap::default();
+    for group in members.iter().filter(|g| !g.is_empty()) {
+        next.clear();
+        let mut simple = true;
+        for &t in group {
+            let tri = tris[t as usize];
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                let inner = across
+                    .get(&(b, a))
+                    .is_some_and(|&u| groups.find(u as usize) == groups.find(t as usize));
+                if !inner {
+                    simple &= next.insert(a, b).is_none();
+                }
+            }
+        }
+        let first = corners.len();
+        if simple && group.len() > 1 {
+            // Walk the boundary; it must come back after using every edge once.
+            let (&v0, _) = next.iter().min_by_key(|(v, _)| **v).unwrap_or((&0, &0));
+            let mut v = v0;
+            loop {
+                corners.push(v);
+                match next.get(&v) {
+                    Some(&w) if w != v0 && corners.len() - first < next.len() => v = w,
+                    Some(&w) if w == v0 => break,
+                    _ => {
+                        simple = false;
+                        break;
+                    }
+                }
+            }
+            simple &= corners.len() - first == next.len();
+        }
+        if simple && group.len() > 1 {
+            start.push(corners.len() as u32);
+        } else {
+            corners.truncate(first);
+            for &t in group {
+                corners.extend_from_slice(&tris[t as usize]);
+                start.push(corners.len() as u32);
+            }
+        }
+    }
+    (corners, start)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::util::box_corners;
+
+    /// The unit cube `[0, 1]³` as a polytope.
+    fn cube() -> Polytope {
+        let pos = box_corners(DVec3::ZERO, DVec3::ONE);
+        Polytope::hull(&pos).unwrap()
+    }
+
+    fn plane(n: DVec3, d: f64) -> Plane {
+        Plane { n, d, tag: 0 }
+    }
+
+    /// Every directed edge of the faces once, with its reverse once.
+    fn closed(p: &Polytope) -> bool {
+        let mut edges = std::collections::HashMap::new();
+        for f in p.faces() {
+            for k in 0..f.len() {
+                *edges.entry((f[k], f[(k + 1) % f.len()])).or_insert(0) += 1;
+            }
+        }
+        edges
+            .iter()
+            .all(|(&(a, b), &n)| n == 1 && edges.get(&(b, a)) == Some(&1))
+    }
+
+    /// Every corner behind (or on) every face's plane: convex.
+    fn convex(p: &Polytope, tol: f64) -> bool {
+        p.faces().all(|f| {
+            let [a, b, c] = [f[0], f[1], f[2]].map(|i| p.pos[i as usize]);
+            let n = (b - a).cross(c - a).normalize();
+            p.pos.iter().all(|&q| n.dot(q - a) <= tol)
+        })
+    }
+
+    #[test]
+    fn a_hull_drops_inner_points_and_has_the_volume() {
+        let mut pts = box_corners(DVec3::ZERO, DVec3::ONE);
+        pts.push(DVec3::splat(0.5));
+        let p = Polytope::hull(&pts).unwrap();
+        assert_eq!(p.pos.len(), 8);
+        assert!((p.volume() - 1.0).abs() < 1e-12);
+        assert!(closed(&p) && convex(&p, 1e-12));
+        assert!(Polytope::hull(&[DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::X + DVec3::Y]).is_none());
+    }
+
+    #[test]
+    fn a_plane_through_the_cube_halves_it_into_a_closed_convex_polytope() {
+        let c = cube();
+        let Clipped::Cut(half) = c.clip(&plane(DVec3::new(1.0, 1.0, 1.0), 1.5), 1e-12) else {
+            panic!("the plane crosses the cube");
+        };
+        assert!((half.volume() - 0.5).abs() < 1e-12, "{}", half.volume());
+        assert!(closed(&half) && convex(&half, 1e-12));
+        // The cap is a regular hexagon.
+        assert!(half.faces().any(|f| f.len() == 6));
+        assert_eq!(c.clip(&plane(DVec3::X, 2.0), 1e-12), Clipped::Unchanged);
+        assert_eq!(c.clip(&plane(DVec3::X, -1.0), 1e-12), Clipped::Empty);
+        // Touching a face from outside keeps everything, from inside nothing.
+        assert_eq!(c.clip(&plane(DVec3::X, 1.0), 1e-12), Clipped::Unchanged);
+        assert_eq!(c.clip(&plane(-DVec3::X, -1.0), 1e-12), Clipped::Empty);
+    }
+
+    #[test]
+    fn a_plane_through_corners_shares_them_with_the_cap() {
+        // x + y <= 1 runs through two vertical edges: a triangular prism.
+        let Clipped::Cut(prism) = cube().clip(&plane(DVec3::new(1.0, 1.0, 0.0), 1.0), 1e-12) else {
+            panic!("the plane crosses the cube");
+        };
+        assert_eq!(prism.pos.len(), 6);
+        assert!((prism.volume() - 0.5).abs() < 1e-12);
+        assert!(closed(&prism) && convex(&prism, 1e-12));
+    }
+
+    #[test]
+    fn many_cuts_keep_the_polytope_closed_convex_and_of_the_exact_volume() {
+        // The cube cut by the planes of an octahedron |x−½| + |y−½| + |z−½| <= r: for
+        // r = 1 the corners are cut off as tetrahedra of volume (½)³/6 each.
+        let mut p = cube();
+        for sx in [-1.0, 1.0] {
+            for sy in [-1.0, 1.0] {
+                for sz in [-1.0, 1.0] {
+                    let n = DVec3::new(sx, sy, sz);
+                    let d = 1.0 + n.dot(DVec3::splat(0.5));
+                    if let Clipped::Cut(q) = p.clip(&plane(n, d), 1e-12) {
+                        p = q;
+                    }
+                }
+            }
+        }
+        let expected = 1.0 - 8.0 * 0.125 / 6.0;
+        assert!((p.volume() - expected).abs() < 1e-12, "{}", p.volume());
+        assert!(closed(&p) && convex(&p, 1e-12));
+        assert_eq!(p.faces().count(), 14);
+        let (pos, tris) = p.to_mesh();
+        assert_eq!((pos.len(), tris.len()), (12, 6 * 2 + 8));
+    }
+}
