@@ -17,7 +17,7 @@ const CONVEX_TOL: f64 = 1e-2;
 /// Pieces smaller than this fraction of the fragment are dropped.
 pub(crate) const MIN_PIECE_FRACTION: f64 = 1e-3;
 /// At most this many convex pieces per fragment.
-const MAX_PIECES: usize = 16;
+pub(crate) const MAX_PIECES: usize = 16;
 /// At most this many convex pieces for a solid whose pieces are kept to be clipped later
 /// ([`fine_pieces`]). The bird needs about 60 to be convex within the tolerance; at 16,
 /// its pieces' hulls exceed it by a fifth.
@@ -54,32 +54,76 @@ pub(crate) fn convex_pieces(piece: &Piece) -> Vec<Vec<DVec3>> {
 /// them (as [`crate::fracture::Fragment::convex_pieces`] and `convex_hulls`).
 pub(crate) type ConvexPieces = (Vec<Vec<DVec3>>, Vec<Vec<[u32; 3]>>);
 
+/// A closed solid (triangles only) convex within the tolerance as one piece; `None` when
+/// it is concave (or its corners span no volume). Convex here means every corner behind
+/// (or within the tolerance in front of) every triangle's plane: then the solid is its
+/// own hull up to rounding (every corner within 1e-9 of its size), else its hull is
+/// computed ([`Polytope::hull`]). A concave solid usually shows it at its first faces.
+pub(crate) fn hull_if_convex(piece: &Piece) -> Option<ConvexPieces> {
+    let size = super::mesh_scale(piece);
+    let tol = CONVEX_TOL * size;
+    let mut worst: f64 = 0.0;
+    for t in &piece.tris {
+        let [a, b, c] = t.map(|i| piece.pos[i as usize]);
+        let n = (b - a).cross(c - a);
+        let len = n.length();
+        if len == 0.0 {
+            continue;
+        }
+        let d = n.dot(a);
+        let front = piece
+            .pos
+            .iter()
+            .map(|&p| n.dot(p) - d)
+            .fold(f64::NEG_INFINITY, f64::max);
+        worst = worst.max(front / len);
+        if worst > tol {
+            return None;
+        }
+    }
+    if worst <= 1e-9 * size && piece.faces.is_empty() {
+        return Some((vec![piece.pos.clone()], vec![piece.tris.clone()]));
+    }
+    let (pos, tris) = Polytope::hull(&piece.pos)?.to_mesh();
+    Some((vec![pos], vec![tris]))
+}
+
 /// Convex pieces of a closed solid that are kept to be clipped later (an intact body cut
-/// at runtime, see [`super::inherit`]), each with its hull's triangles: decomposed as
-/// [`convex_pieces`] does, but into up to `FINE_MAX_PIECES`, each piece's points reduced
-/// to the corners of its hull (found exactly, from their Delaunay tetrahedralization).
-/// The hulls are left out (empty) if one cannot be found.
+/// at runtime, see [`super::inherit`]): [`decomposed_with_hulls`] into up to
+/// `FINE_MAX_PIECES`.
 pub(crate) fn fine_pieces(piece: &Piece) -> ConvexPieces {
+    decomposed_with_hulls(piece, FINE_MAX_PIECES)
+}
+
+/// Convex pieces of a closed solid, each with its hull's triangles: decomposed as
+/// [`convex_pieces`] does, into up to `max_pieces`, each piece's points reduced to the
+/// corners of its hull ([`Polytope::hull`]; a piece whose hull cannot be found keeps its
+/// points and has no triangles).
+pub(crate) fn decomposed_with_hulls(piece: &Piece, max_pieces: usize) -> ConvexPieces {
     let total = piece.volume();
     let parts = if total > 0.0 {
-        decomposition_parts_with(piece, CONVEX_TOL, FINE_MAX_PIECES)
+        decomposition_parts_with(piece, CONVEX_TOL, max_pieces)
     } else {
         None
     };
-    let points: Vec<Vec<DVec3>> = match parts {
+    let mut points: Vec<Vec<DVec3>> = match parts {
         Some(parts) => parts
             .into_iter()
             .filter(|p| p.volume() >= MIN_PIECE_FRACTION * total)
             .map(|p| p.pos)
             .collect(),
-        None => vec![piece.pos.clone()],
+        None => Vec::new(),
     };
-    let hulls: Option<Vec<Polytope>> = points.iter().map(|p| Polytope::hull(p)).collect();
-    match hulls {
-        Some(hulls) if !hulls.is_empty() => hulls.iter().map(Polytope::to_mesh).unzip(),
-        _ if points.is_empty() => (vec![piece.pos.clone()], Vec::new()),
-        _ => (points, Vec::new()),
+    if points.is_empty() {
+        points.push(piece.pos.clone());
     }
+    points
+        .into_iter()
+        .map(|p| match Polytope::hull(&p) {
+            Some(h) => h.to_mesh(),
+            None => (p, Vec::new()),
+        })
+        .unzip()
 }
 
 /// Volume of the tetrahedron `[a, b, c, d]` (signed).

@@ -1,6 +1,6 @@
-//! The convex hull of a point set: incremental, with exact orientations. A convex piece
-//! of the decomposition is convex only within its tolerance; its hull is what the
-//! collider is, and what a runtime cut clips ([`super::polytope::Polytope`]).
+//! The convex hull of a point set (quickhull, with a tolerance far above rounding). A
+//! convex piece of the decomposition is convex only within its tolerance; its hull is
+//! what the collider is, and what a runtime cut clips ([`super::polytope::Polytope`]).
 
 use glam::DVec3;
 
@@ -16,11 +16,14 @@ const HULL_TOLERANCE: f64 = 1e-7;
 /// The outward triangles of the convex hull of `points` (indices into `points`), or
 /// `None` when the points span no volume.
 ///
-/// Points are added one at a time. A point more than [`HULL_TOLERANCE`] in front of some
-/// face replaces the faces it lies that far in front of, the connected region around the
-/// face it is farthest in front of, by a fan from the point to the region's boundary. A
-/// point inside the hull, on it or nearer to it changes nothing (the hull may then miss
-/// it by that much). Should rounding still leave the result other than a closed surface
+/// Quickhull: every point not yet on the hull waits on a face it lies in front of (the
+/// one it lies farthest in front of, among the faces it was offered). The farthest
+/// point waiting on a face is added: the faces it lies more than [`HULL_TOLERANCE`] in
+/// front of, the connected region around that face, give way to a fan from the point to
+/// the region's boundary, and their waiting points move to the new face they lie
+/// farthest in front of (a point in front of none is inside the hull). A point inside
+/// the hull, on it or nearer to it than the tolerance is left out (the hull may miss it
+/// by that much). Should rounding still leave the result other than a closed surface
 /// with every point behind every face (within twice the tolerance), the exact hull of
 /// the points' Delaunay tetrahedralization is taken instead.
 pub(crate) fn hull_triangles(points: &[DVec3]) -> Option<Vec<[u32; 3]>> {
@@ -37,61 +40,70 @@ pub(crate) fn hull_triangles(points: &[DVec3]) -> Option<Vec<[u32; 3]>> {
         faces: Vec::new(),
         planes: Vec::new(),
         alive: Vec::new(),
+        waiting: Vec::new(),
         edges: FastMap::default(),
         tol,
     };
     for face in FACES {
         h.add(face.map(|k| first[k]));
     }
+    let all: Vec<u32> = (0..points.len() as u32)
+        .filter(|p| !first.contains(p))
+        .collect();
+    h.assign(&all, 0);
     let mut seen = Vec::new();
     let mut stack = Vec::new();
     let mut horizon = Vec::new();
+    let mut orphans = Vec::new();
     let mut state: Vec<u8> = Vec::new();
-    for p in 0..points.len() as u32 {
-        if first.contains(&p) {
+    let mut f = 0;
+    while f < h.faces.len() {
+        if !h.alive[f] || h.waiting[f].is_empty() {
+            f += 1;
             continue;
         }
-        // The face `p` is farthest in front of: in a nearly flat region, a face tilted by
-        // rounding may be seen apart from the faces truly seen.
-        let Some(start) = (0..h.faces.len())
-            .filter(|&f| h.alive[f])
-            .map(|f| (h.height(f, p), f))
-            .filter(|&(d, _)| d > h.tol)
-            .max_by(|a, b| a.0.total_cmp(&b.0))
-            .map(|(_, f)| f)
-        else {
-            continue;
-        };
-        // The faces `p` sees (state 1), flooded from `start`; state 2: checked, unseen.
+        // The point waiting on `f` farthest in front of it: a corner of the hull.
+        let (k, p) = h.waiting[f]
+            .iter()
+            .enumerate()
+            .map(|(k, &p)| (k, p, h.height(f, p)))
+            .max_by(|a, b| a.2.total_cmp(&b.2))
+            .map(|(k, p, _)| (k, p))
+            .unwrap_or((0, 0));
+        h.waiting[f].swap_remove(k);
+        // The faces `p` sees (state 1), flooded from `f`; state 2: checked, unseen.
         state.clear();
         state.resize(h.faces.len(), 0);
         seen.clear();
         horizon.clear();
-        state[start] = 1;
-        stack.push(start);
-        while let Some(f) = stack.pop() {
-            seen.push(f);
-            let tri = h.faces[f];
+        orphans.clear();
+        state[f] = 1;
+        stack.push(f);
+        while let Some(g) = stack.pop() {
+            seen.push(g);
+            let tri = h.faces[g];
             for k in 0..3 {
                 let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                let Some(&g) = h.edges.get(&(b, a)) else {
+                let Some(&n) = h.edges.get(&(b, a)) else {
                     return exact_hull(points);
                 };
-                let g = g as usize;
-                if state[g] == 0 {
-                    state[g] = if h.height(g, p) > h.tol { 1 } else { 2 };
-                    if state[g] == 1 {
-                        stack.push(g);
+                let n = n as usize;
+                if state[n] == 0 {
+                    state[n] = if h.height(n, p) > h.tol { 1 } else { 2 };
+                    if state[n] == 1 {
+                        stack.push(n);
                     }
                 }
-                if state[g] == 2 {
+                if state[n] == 2 {
                     horizon.push((a, b));
                 }
             }
         }
-        for &f in &seen {
-            h.remove(f);
+        for &g in &seen {
+            orphans.append(&mut h.waiting[g]);
+            h.remove(g);
         }
+        let first_new = h.faces.len();
         for &(a, b) in &horizon {
             if h.edges.contains_key(&(a, b)) {
                 // The seen region was not a disc: its boundary runs twice through a
@@ -100,6 +112,9 @@ pub(crate) fn hull_triangles(points: &[DVec3]) -> Option<Vec<[u32; 3]>> {
             }
             h.add([a, b, p]);
         }
+        h.assign(&orphans, first_new);
+        // Faces before `f` may have waiting points only if new; new ones come after.
+        f = f.min(first_new);
     }
     let tris: Vec<[u32; 3]> = (0..h.faces.len())
         .filter(|&f| h.alive[f])
@@ -133,6 +148,8 @@ struct Hull<'a> {
     /// Per face, its unit outward normal and offset.
     planes: Vec<(DVec3, f64)>,
     alive: Vec<bool>,
+    /// Per face, the points waiting on it (lying in front of it).
+    waiting: Vec<Vec<u32>>,
     edges: FastMap<(u32, u32), u32>,
     /// How far in front of a face a point must lie to see it.
     tol: f64,
@@ -155,6 +172,22 @@ impl Hull<'_> {
         self.planes.push((n, n.dot(a)));
         self.faces.push(tri);
         self.alive.push(true);
+        self.waiting.push(Vec::new());
+    }
+
+    /// Each of `points` waits on the face from `first` on it lies farthest in front of,
+    /// if it lies more than the tolerance in front of one.
+    fn assign(&mut self, points: &[u32], first: usize) {
+        for &p in points {
+            let best = (first..self.faces.len())
+                .filter(|&f| self.alive[f])
+                .map(|f| (self.height(f, p), f))
+                .filter(|&(d, _)| d > self.tol)
+                .max_by(|a, b| a.0.total_cmp(&b.0));
+            if let Some((_, f)) = best {
+                self.waiting[f].push(p);
+            }
+        }
     }
 
     fn remove(&mut self, f: usize) {

@@ -20,6 +20,13 @@ use super::polytope::{Outcome, Polytope, Scratch};
 use super::{Piece, Plane};
 use crate::util::bounds;
 
+/// The most a fragment's inherited pieces may hold, over its own volume. A piece is a hull
+/// of a piece of the solid (convex only within the decomposition's tolerance), so it can
+/// reach past the solid; in a small fragment that excess can be a large part of it (the
+/// bird cut twice: up to two thirds). Beyond this the fragment is decomposed instead, as
+/// finely as a fragment cut from scratch (whose hulls hold under 1.09 of it on the bird).
+const MAX_EXCESS: f64 = 1.1;
+
 /// A convex piece of the solid being cut: the polytope, its faces' planes and its bounds.
 #[derive(Debug, Clone)]
 pub(crate) struct Part {
@@ -53,7 +60,8 @@ impl Part {
 /// planes; a fragment merged from several cells has them all): each cell within the
 /// fragment's bounding box, clipped by each part. Pieces under `MIN_PIECE_FRACTION` of
 /// the fragment are left out. Returns the pieces' points and their hulls' triangles, or
-/// `None` when no piece is left (the caller then decomposes the fragment).
+/// `None` when no piece is left or when the pieces hold more than `MAX_EXCESS` times the
+/// fragment's volume (the caller then decomposes the fragment).
 pub(crate) fn inherited_pieces(
     p: &Piece,
     volume: f64,
@@ -66,7 +74,7 @@ pub(crate) fn inherited_pieces(
     }
     let (lo, hi) = bounds(&p.pos);
     let min_volume = MIN_PIECE_FRACTION * volume;
-    let (mut points, mut hulls) = (Vec::new(), Vec::new());
+    let mut pieces: Vec<(Polytope, f64)> = Vec::new();
     let mut scratch = Scratch::default();
     for planes in cells {
         let Some(cell) = clip_all(&Polytope::cuboid(lo, hi), planes, eps, &mut scratch) else {
@@ -88,28 +96,92 @@ pub(crate) fn inherited_pieces(
             let Some(piece) = piece else {
                 continue;
             };
-            if piece.volume() >= min_volume {
-                let (pos, tris) = piece.to_mesh();
-                points.push(pos);
-                hulls.push(tris);
+            let v = piece.volume();
+            if v >= min_volume {
+                pieces.push((piece, v));
+            } else {
+                scratch.give(piece);
             }
-            scratch.give(piece);
         }
         scratch.give(cell);
     }
-    (!points.is_empty()).then_some((points, hulls))
+    let held: f64 = pieces.iter().map(|(_, v)| v).sum();
+    if std::env::var("DBGX").is_ok() {
+        eprint!(
+            "frag vol {volume:.5} pieces {} held {:.3}",
+            pieces.len(),
+            held / volume
+        );
+    }
+    if held > MAX_EXCESS * volume {
+        // Too much outside the fragment: cut it back to the fragment's own hull, or take
+        // that hull alone when it holds less.
+        let hull = Polytope::hull(&p.pos)?;
+        let planes = hull.face_planes();
+        let mut kept = Vec::with_capacity(pieces.len());
+        for (piece, _) in pieces {
+            if let Some(q) = clip_all(&piece, &planes, eps, &mut scratch) {
+                let v = q.volume();
+                if v >= min_volume {
+                    kept.push((q, v));
+                }
+            }
+        }
+        pieces = kept;
+        let held: f64 = pieces.iter().map(|(_, v)| v).sum();
+        let whole = hull.volume();
+        if std::env::var("DBGX").is_ok() {
+            eprint!(
+                " -> {} held {:.3} hull {:.3}",
+                pieces.len(),
+                held / volume,
+                whole / volume
+            );
+        }
+        if whole <= held {
+            pieces = vec![(hull, whole)];
+        }
+    }
+    if std::env::var("DBGX").is_ok() {
+        eprintln!();
+    }
+    if pieces.is_empty() {
+        return None;
+    }
+    Some(pieces.iter().map(|(p, _)| p.to_mesh()).unzip())
 }
 
-/// `poly` clipped by every plane in turn; `None` once nothing is left.
+/// `poly` clipped by every plane; `None` once nothing is left. A plane that passes the
+/// ball around `poly`'s bounds keeps all of it or none, untested (the cut polytopes stay
+/// within the ball); the others cut in order of how far beyond them the ball's centre
+/// lies, so the planes that cut most away come first and later ones have less to cut
+/// (or nothing: a plane the polytope has shrunk away from is a cheap test).
 fn clip_all(
     poly: &Polytope,
     planes: &[Plane],
     eps: f64,
     scratch: &mut Scratch,
 ) -> Option<Polytope> {
+    let (lo, hi) = poly.bounds();
+    let (centre, radius) = ((lo + hi) * 0.5, (hi - lo).length() * 0.5);
+    let order = &mut scratch.order;
+    order.clear();
+    for (k, plane) in planes.iter().enumerate() {
+        let len = plane.n.length();
+        let at = plane.eval(centre) / len;
+        if at > radius {
+            return None;
+        }
+        if at >= -radius {
+            order.push((at, k as u32));
+        }
+    }
+    order.sort_unstable_by(|a, b| b.0.total_cmp(&a.0));
+    let order = std::mem::take(order);
     let mut current: Option<Polytope> = None;
     let mut next = scratch.take();
-    for plane in planes {
+    for &(_, k) in &order {
+        let plane = &planes[k as usize];
         let from = current.as_ref().unwrap_or(poly);
         match from.clip_into(plane, eps, scratch, &mut next) {
             Outcome::Unchanged => {}
@@ -118,6 +190,7 @@ fn clip_all(
                 if let Some(c) = current {
                     scratch.give(c);
                 }
+                scratch.order = order;
                 return None;
             }
             Outcome::Cut => match current.as_mut() {
@@ -127,6 +200,7 @@ fn clip_all(
         }
     }
     scratch.give(next);
+    scratch.order = order;
     Some(current.unwrap_or_else(|| {
         let mut p = scratch.take();
         p.clone_from(poly);

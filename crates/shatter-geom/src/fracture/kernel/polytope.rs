@@ -34,6 +34,8 @@ pub(crate) struct Scratch {
     rim: Vec<(u32, u32)>,
     /// Polytopes done with, whose buffers the next results reuse.
     pool: Vec<Polytope>,
+    /// Planes in the order a run of cuts takes them (see `inherit`).
+    pub order: Vec<(f64, u32)>,
 }
 
 impl Scratch {
@@ -78,28 +80,36 @@ const OUT: i8 = 1;
 
 impl Polytope {
     /// The polytope bounded by `tris` (outward triangles over `pos`, a closed convex
-    /// surface), neighbouring triangles in one plane joined into one face (a hull's flat
-    /// regions come as many triangles; cut as one polygon, a region gains no corners
+    /// surface), as [`Polytope::to_mesh`] writes one: each run of triangles fanned from
+    /// one corner in one plane is one face (cut as one polygon, a face gains no corners
     /// along the cut where its inner edges cross it). Corners no face uses are dropped.
     /// `None` when an index is out of range or there are fewer than four triangles.
     pub fn from_triangles(pos: &[DVec3], tris: &[[u32; 3]]) -> Option<Polytope> {
         if tris.len() < 4 || tris.iter().flatten().any(|&i| i as usize >= pos.len()) {
             return None;
         }
-        let (corners, start) = merged_faces(pos, tris);
+        let (corners, start) = fanned_faces(pos, tris);
+        Some(Polytope::from_faces(pos, corners, start))
+    }
+
+    /// The convex hull of `points` ([`hull_triangles`]), neighbouring triangles in one
+    /// plane joined into one face (a hull's flat regions come as many triangles);
+    /// `None` when the points span no volume.
+    pub fn hull(points: &[DVec3]) -> Option<Polytope> {
+        let tris = hull_triangles(points)?;
+        let (corners, start) = merged_faces(points, &tris);
+        Some(Polytope::from_faces(points, corners, start))
+    }
+
+    /// The polytope of `corners` and `start` over `pos`, unused corners dropped.
+    fn from_faces(pos: &[DVec3], corners: Vec<u32>, start: Vec<u32>) -> Polytope {
         let mut p = Polytope {
             pos: pos.to_vec(),
             corners,
             start,
         };
         p.compact();
-        Some(p)
-    }
-
-    /// The convex hull of `points` ([`hull_triangles`]); `None` when the points span no
-    /// volume.
-    pub fn hull(points: &[DVec3]) -> Option<Polytope> {
-        Polytope::from_triangles(points, &hull_triangles(points)?)
+        p
     }
 
     /// The box `[lo, hi]`.
@@ -245,28 +255,32 @@ impl Polytope {
             rim,
             ..
         } = scratch;
-        s.clear();
-        side.clear();
+        // Most planes miss: tell that before writing anything.
         let (mut any_in, mut any_out) = (false, false);
         for &p in &self.pos {
             let v = plane.eval(p);
-            let (v, k) = if v.abs() <= tol {
-                (0.0, ON)
-            } else if v < 0.0 {
-                any_in = true;
-                (v, IN)
-            } else {
-                any_out = true;
-                (v, OUT)
-            };
-            s.push(v);
-            side.push(k);
+            any_in |= v < -tol;
+            any_out |= v > tol;
         }
         if !any_out {
             return Outcome::Unchanged;
         }
         if !any_in {
             return Outcome::Empty;
+        }
+        s.clear();
+        side.clear();
+        for &p in &self.pos {
+            let v = plane.eval(p);
+            let (v, k) = if v.abs() <= tol {
+                (0.0, ON)
+            } else if v < 0.0 {
+                (v, IN)
+            } else {
+                (v, OUT)
+            };
+            s.push(v);
+            side.push(k);
         }
         remap.clear();
         remap.resize(self.pos.len(), u32::MAX);
@@ -277,51 +291,87 @@ impl Polytope {
         out.corners.clear();
         out.start.clear();
         out.start.push(0);
+        out.corners.reserve(self.corners.len() + 64);
         for f in self.faces() {
-            let first = out.corners.len();
-            let mut all_on = true;
-            for (k, &a) in f.iter().enumerate() {
-                let b = f[(k + 1) % f.len()];
-                let (ka, kb) = (side[a as usize], side[b as usize]);
-                all_on &= ka == ON;
-                if ka != OUT {
-                    let r = &mut remap[a as usize];
-                    if *r == u32::MAX {
-                        *r = out.pos.len() as u32;
-                        out.pos.push(self.pos[a as usize]);
-                        on.push(ka == ON);
-                    }
-                    out.corners.push(*r);
+            let (mut outside, mut onto) = (0, 0);
+            for &a in f {
+                match side[a as usize] {
+                    OUT => outside += 1,
+                    ON => onto += 1,
+                    _ => {}
                 }
-                if ka * kb == -1 {
-                    let key = (a.min(b), a.max(b));
-                    let x = match crossed.iter().find(|(e, _)| *e == key) {
-                        Some(&(_, x)) => x,
-                        None => {
-                            let (i, j) = (key.0 as usize, key.1 as usize);
-                            let t = s[i] / (s[i] - s[j]);
-                            out.pos.push(self.pos[i] + (self.pos[j] - self.pos[i]) * t);
-                            on.push(true);
-                            let x = (out.pos.len() - 1) as u32;
-                            crossed.push((key, x));
-                            x
-                        }
-                    };
-                    out.corners.push(x);
+            }
+            if outside == f.len() || onto == f.len() {
+                // Beyond the plane, or in it (the cap replaces it).
+                continue;
+            }
+            let first = out.corners.len();
+            #[inline(always)]
+            fn renumber(
+                a: u32,
+                remap: &mut [u32],
+                side: &[i8],
+                from: &[DVec3],
+                pos: &mut Vec<DVec3>,
+                on: &mut Vec<bool>,
+            ) -> u32 {
+                let r = &mut remap[a as usize];
+                if *r == u32::MAX {
+                    *r = pos.len() as u32;
+                    pos.push(from[a as usize]);
+                    on.push(side[a as usize] == ON);
+                }
+                *r
+            }
+            if outside == 0 {
+                // Untouched: its corners as they are.
+                for &a in f {
+                    let r = renumber(a, remap, side, &self.pos, &mut out.pos, on);
+                    out.corners.push(r);
+                }
+            } else {
+                let mut a = f[f.len() - 1];
+                for &b in f {
+                    // Edge a → b: b is kept, and the crossing comes first.
+                    let (ka, kb) = (side[a as usize], side[b as usize]);
+                    if ka * kb == -1 {
+                        let key = (a.min(b), a.max(b));
+                        let x = match crossed.iter().find(|(e, _)| *e == key) {
+                            Some(&(_, x)) => x,
+                            None => {
+                                let (i, j) = (key.0 as usize, key.1 as usize);
+                                let t = s[i] / (s[i] - s[j]);
+                                out.pos.push(self.pos[i] + (self.pos[j] - self.pos[i]) * t);
+                                on.push(true);
+                                let x = (out.pos.len() - 1) as u32;
+                                crossed.push((key, x));
+                                x
+                            }
+                        };
+                        out.corners.push(x);
+                    }
+                    if kb != OUT {
+                        let r = renumber(b, remap, side, &self.pos, &mut out.pos, on);
+                        out.corners.push(r);
+                    }
+                    a = b;
                 }
             }
             let kept = &out.corners[first..];
-            if kept.len() >= 3 && !all_on {
-                for (k, &u) in kept.iter().enumerate() {
-                    let v = kept[(k + 1) % kept.len()];
+            if kept.len() < 3 {
+                out.corners.truncate(first);
+                continue;
+            }
+            if outside > 0 || onto >= 2 {
+                let mut u = kept[kept.len() - 1];
+                for &v in kept {
                     if on[u as usize] && on[v as usize] {
                         rim.push((u, v));
                     }
+                    u = v;
                 }
-                out.start.push(out.corners.len() as u32);
-            } else {
-                out.corners.truncate(first);
             }
+            out.start.push(out.corners.len() as u32);
         }
         // The cap's boundary: the rim edges without their reverse, each walked back.
         let mut k = 0;
@@ -414,6 +464,48 @@ fn sorted_cap(pos: &[DVec3], on: &[bool], plane: &Plane, corners: &mut Vec<u32>)
 /// Neighbouring triangles whose normals differ by under this (`1 − cos`, about 1.4e-6
 /// radians) are one face.
 const COPLANAR: f64 = 1e-12;
+
+/// The faces of the closed surface `tris` over `pos` written as fans: each run of
+/// consecutive triangles `[a, b, c]`, `[a, c, d]`, … in one plane (within [`COPLANAR`])
+/// is the polygon `a b c d …`, or, when the run closes on itself round `a` (a fan from a
+/// centre corner), the polygon round `a`. Returns the faces' corners and starts, as in
+/// [`Polytope`].
+fn fanned_faces(pos: &[DVec3], tris: &[[u32; 3]]) -> (Vec<u32>, Vec<u32>) {
+    let normal = |t: &[u32; 3]| {
+        let [a, b, c] = t.map(|i| pos[i as usize]);
+        (b - a).cross(c - a)
+    };
+    let same_plane = |m: DVec3, n: DVec3| {
+        m.dot(n) >= (1.0 - COPLANAR) * (m.length_squared() * n.length_squared()).sqrt()
+    };
+    let (mut corners, mut start) = (Vec::with_capacity(3 * tris.len()), vec![0u32]);
+    let mut i = 0;
+    while i < tris.len() {
+        let t = tris[i];
+        let first = corners.len();
+        corners.extend_from_slice(&t);
+        let n = normal(&t);
+        let mut j = i + 1;
+        while let Some(u) = tris.get(j) {
+            let last = corners[corners.len() - 1];
+            if u[0] != t[0] || u[1] != last || !same_plane(n, normal(u)) {
+                break;
+            }
+            corners.push(u[2]);
+            j += 1;
+        }
+        let fan = &corners[first..];
+        if fan.len() > 4 && fan[fan.len() - 1] == fan[1] {
+            // Round a centre corner: the polygon is the rim.
+            let rim: Vec<u32> = fan[1..fan.len() - 1].to_vec();
+            corners.truncate(first);
+            corners.extend(rim);
+        }
+        start.push(corners.len() as u32);
+        i = j;
+    }
+    (corners, start)
+}
 
 /// The faces of the closed surface `tris` over `pos`: each group of neighbouring
 /// triangles in one plane (within [`COPLANAR`]) as one polygon, its boundary walked in
