@@ -198,12 +198,12 @@ pub fn collision_shapes(fracture: &Fracture, scale: Vec3) -> Vec<Vec<SharedShape
                 .iter()
                 .enumerate()
                 .filter_map(|(k, p)| {
-                    let points: Vec<Vec3> = p.iter().map(|v| (*v * s).as_vec3()).collect();
+                    let points = || p.iter().map(|v| (*v * s).as_vec3()).collect::<Vec<Vec3>>();
                     let hull = f.convex_hulls.get(k).map(Vec::as_slice);
-                    match hull.filter(|tris| closed_over(tris, points.len())) {
-                        Some(tris) => SharedShape::convex_mesh(points.clone(), tris)
-                            .or_else(|| SharedShape::convex_hull(&points)),
-                        None => SharedShape::convex_hull(&points),
+                    match hull.filter(|tris| closed_over(tris, p.len())) {
+                        Some(tris) => SharedShape::convex_mesh(points(), tris)
+                            .or_else(|| SharedShape::convex_hull(&points())),
+                        None => SharedShape::convex_hull(&points()),
                     }
                 })
                 .collect()
@@ -218,15 +218,32 @@ fn closed_over(tris: &[[u32; 3]], n: usize) -> bool {
     if tris.len() < 4 || tris.iter().flatten().any(|&i| i as usize >= n) {
         return false;
     }
-    let mut edges: Vec<(u32, u32)> = tris
-        .iter()
-        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
-        .collect();
-    edges.sort_unstable();
-    edges.windows(2).all(|w| w[0] != w[1])
-        && edges
+    let edges = || {
+        tris.iter()
+            .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+    };
+    if n <= 256 {
+        // A bit per directed edge (a piece has a few dozen corners).
+        let mut seen = vec![0u64; (n * n).div_ceil(64)];
+        let bit = |a: u32, b: u32| a as usize * n + b as usize;
+        for (a, b) in edges() {
+            let i = bit(a, b);
+            if a == b || seen[i / 64] & (1 << (i % 64)) != 0 {
+                return false;
+            }
+            seen[i / 64] |= 1 << (i % 64);
+        }
+        return edges().all(|(a, b)| {
+            let i = bit(b, a);
+            seen[i / 64] & (1 << (i % 64)) != 0
+        });
+    }
+    let mut sorted: Vec<(u32, u32)> = edges().collect();
+    sorted.sort_unstable();
+    sorted.windows(2).all(|w| w[0] != w[1])
+        && sorted
             .iter()
-            .all(|&(a, b)| a != b && edges.binary_search(&(b, a)).is_ok())
+            .all(|&(a, b)| a != b && sorted.binary_search(&(b, a)).is_ok())
 }
 
 /// [`prepare`], with the collision shapes already built (by [`collision_shapes`] at the

@@ -295,7 +295,16 @@ fn cut(piece: &Piece, plane: &Plane, eps: f64, both: bool, keep_faces: bool) -> 
         both,
     };
     for (tri, &tag) in piece.tris.iter().zip(&piece.tags) {
-        c.triangle(*tri, tag, plane);
+        // Most triangles lie wholly on one side: kept or dropped as they are.
+        let [a, b, d] = tri.map(|i| c.s[i as usize]);
+        if a < 0.0 && b < 0.0 && d < 0.0 {
+            c.out[0].tris.push(*tri);
+            c.out[0].tags.push(tag);
+        } else if a > 0.0 && b > 0.0 && d > 0.0 {
+            c.keep(1, *tri, tag);
+        } else {
+            c.triangle(*tri, tag, plane);
+        }
     }
     for face in &piece.faces {
         c.face(face, plane);

@@ -106,13 +106,6 @@ pub(crate) fn inherited_pieces(
         scratch.give(cell);
     }
     let held: f64 = pieces.iter().map(|(_, v)| v).sum();
-    if std::env::var("DBGX").is_ok() {
-        eprint!(
-            "frag vol {volume:.5} pieces {} held {:.3}",
-            pieces.len(),
-            held / volume
-        );
-    }
     if held > MAX_EXCESS * volume {
         // Too much outside the fragment: cut it back to the fragment's own hull, or take
         // that hull alone when it holds less.
@@ -130,20 +123,9 @@ pub(crate) fn inherited_pieces(
         pieces = kept;
         let held: f64 = pieces.iter().map(|(_, v)| v).sum();
         let whole = hull.volume();
-        if std::env::var("DBGX").is_ok() {
-            eprint!(
-                " -> {} held {:.3} hull {:.3}",
-                pieces.len(),
-                held / volume,
-                whole / volume
-            );
-        }
         if whole <= held {
             pieces = vec![(hull, whole)];
         }
-    }
-    if std::env::var("DBGX").is_ok() {
-        eprintln!();
     }
     if pieces.is_empty() {
         return None;
