@@ -7,9 +7,7 @@ use rayon::prelude::*;
 
 use super::attributes::{Source, attach};
 use super::bonds::merge::merge_small_with;
-use super::kernel::convex::{
-    MAX_PIECES, convex_pieces, decomposed_with_hulls, fine_pieces, hull_if_convex,
-};
+use super::kernel::convex::{MAX_PIECES, convex_pieces, decomposed_with_hulls, fine_pieces};
 use super::kernel::inherit::{Part, inherited_pieces};
 use super::kernel::{Piece, Plane, is_surface, mesh_scale};
 use super::methods::grid::{Grid, bricks, is_box, sliced};
@@ -584,9 +582,7 @@ fn built_fragment(p: &Piece, convex: &LocalConvex, cells: &[&[Plane]], eps: f64)
         }
         LocalConvex::Clipped(parts) => {
             let mut f = fragment_without_pieces(p);
-            // A convex fragment is its hull; a concave one takes the pieces it inherits.
-            (f.convex_pieces, f.convex_hulls) = hull_if_convex(p)
-                .or_else(|| inherited_pieces(p, f.volume, parts, cells, eps))
+            (f.convex_pieces, f.convex_hulls) = inherited_pieces(p, f.volume, parts, cells, eps)
                 .unwrap_or_else(|| decomposed_with_hulls(p, MAX_PIECES));
             f
         }

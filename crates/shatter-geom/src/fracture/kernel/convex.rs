@@ -54,40 +54,6 @@ pub(crate) fn convex_pieces(piece: &Piece) -> Vec<Vec<DVec3>> {
 /// them (as [`crate::fracture::Fragment::convex_pieces`] and `convex_hulls`).
 pub(crate) type ConvexPieces = (Vec<Vec<DVec3>>, Vec<Vec<[u32; 3]>>);
 
-/// A closed solid (triangles only) convex within the tolerance as one piece; `None` when
-/// it is concave (or its corners span no volume). Convex here means every corner behind
-/// (or within the tolerance in front of) every triangle's plane: then the solid is its
-/// own hull up to rounding (every corner within 1e-9 of its size), else its hull is
-/// computed ([`Polytope::hull`]). A concave solid usually shows it at its first faces.
-pub(crate) fn hull_if_convex(piece: &Piece) -> Option<ConvexPieces> {
-    let size = super::mesh_scale(piece);
-    let tol = CONVEX_TOL * size;
-    let mut worst: f64 = 0.0;
-    for t in &piece.tris {
-        let [a, b, c] = t.map(|i| piece.pos[i as usize]);
-        let n = (b - a).cross(c - a);
-        let len = n.length();
-        if len == 0.0 {
-            continue;
-        }
-        let d = n.dot(a);
-        let front = piece
-            .pos
-            .iter()
-            .map(|&p| n.dot(p) - d)
-            .fold(f64::NEG_INFINITY, f64::max);
-        worst = worst.max(front / len);
-        if worst > tol {
-            return None;
-        }
-    }
-    if worst <= 1e-9 * size && piece.faces.is_empty() {
-        return Some((vec![piece.pos.clone()], vec![piece.tris.clone()]));
-    }
-    let (pos, tris) = Polytope::hull(&piece.pos)?.to_mesh();
-    Some((vec![pos], vec![tris]))
-}
-
 /// Convex pieces of a closed solid that are kept to be clipped later (an intact body cut
 /// at runtime, see [`super::inherit`]): [`decomposed_with_hulls`] into up to
 /// `FINE_MAX_PIECES`.

@@ -13,8 +13,15 @@ use crate::util::FastMap;
 /// collider feels.
 const HULL_TOLERANCE: f64 = 1e-7;
 
-/// The outward triangles of the convex hull of `points` (indices into `points`), or
-/// `None` when the points span no volume.
+/// A hull: its outward triangles (indices into the points) and, per triangle, the
+/// triangle across each edge (`nbr[t][k]` across `tris[t][k] → tris[t][k + 1]`).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct HullMesh {
+    pub tris: Vec<[u32; 3]>,
+    pub nbr: Vec<[u32; 3]>,
+}
+
+/// The convex hull of `points`, or `None` when the points span no volume.
 ///
 /// Quickhull: every point not yet on the hull waits on a face it lies in front of (the
 /// one it lies farthest in front of, among the faces it was offered). The farthest
@@ -23,10 +30,11 @@ const HULL_TOLERANCE: f64 = 1e-7;
 /// the region's boundary, and their waiting points move to the new face they lie
 /// farthest in front of (a point in front of none is inside the hull). A point inside
 /// the hull, on it or nearer to it than the tolerance is left out (the hull may miss it
-/// by that much). Should rounding still leave the result other than a closed surface
-/// with every point behind every face (within twice the tolerance), the exact hull of
-/// the points' Delaunay tetrahedralization is taken instead.
-pub(crate) fn hull_triangles(points: &[DVec3]) -> Option<Vec<[u32; 3]>> {
+/// by that much). Faces keep their neighbours as they go, so no edge is ever looked up.
+/// Should rounding still leave the result other than a closed surface convex at every
+/// edge (within twice the tolerance), the exact hull of the points' Delaunay
+/// tetrahedralization is taken instead.
+pub(crate) fn hull_mesh(points: &[DVec3]) -> Option<HullMesh> {
     if points.len() < 4 {
         return None;
     }
@@ -35,17 +43,28 @@ pub(crate) fn hull_triangles(points: &[DVec3]) -> Option<Vec<[u32; 3]>> {
     let Some(first) = first_tetrahedron(points, tol) else {
         return exact_hull(points);
     };
+    // Room for the faces of a hull of a few dozen corners, made and removed.
+    let room = 8 * points.len().min(256);
     let mut h = Hull {
         pts: points,
-        faces: Vec::new(),
-        planes: Vec::new(),
-        alive: Vec::new(),
-        waiting: Vec::new(),
-        edges: FastMap::default(),
+        faces: Vec::with_capacity(room),
+        nbr: Vec::with_capacity(room),
+        planes: Vec::with_capacity(room),
+        alive: Vec::with_capacity(room),
+        waiting: Vec::with_capacity(room),
         tol,
     };
     for face in FACES {
-        h.add(face.map(|k| first[k]));
+        h.add(face.map(|k| first[k]), [u32::MAX; 3]);
+    }
+    // The first four faces' neighbours: the face holding each edge the other way.
+    for f in 0..4 {
+        for k in 0..3 {
+            let (a, b) = (h.faces[f][k], h.faces[f][(k + 1) % 3]);
+            h.nbr[f][k] = (0..4)
+                .find(|&g| (0..3).any(|j| h.faces[g][j] == b && h.faces[g][(j + 1) % 3] == a))
+                .map_or(u32::MAX, |g| g as u32);
+        }
     }
     let all: Vec<u32> = (0..points.len() as u32)
         .filter(|p| !first.contains(p))
@@ -53,9 +72,14 @@ pub(crate) fn hull_triangles(points: &[DVec3]) -> Option<Vec<[u32; 3]>> {
     h.assign(&all, 0);
     let mut seen = Vec::new();
     let mut stack = Vec::new();
-    let mut horizon = Vec::new();
+    // The seen region's boundary: (from, to, the unseen face across it).
+    let mut horizon: Vec<(u32, u32, u32)> = Vec::new();
+    let mut cycle: Vec<(u32, u32, u32)> = Vec::new();
     let mut orphans = Vec::new();
-    let mut state: Vec<u8> = Vec::new();
+    // Per face, the round that last checked it and what it found (seen or not): no
+    // clearing between rounds.
+    let mut state: Vec<(u32, bool)> = Vec::new();
+    let mut round = 0u32;
     let mut f = 0;
     while f < h.faces.len() {
         if !h.alive[f] || h.waiting[f].is_empty() {
@@ -71,86 +95,151 @@ pub(crate) fn hull_triangles(points: &[DVec3]) -> Option<Vec<[u32; 3]>> {
             .map(|(k, p, _)| (k, p))
             .unwrap_or((0, 0));
         h.waiting[f].swap_remove(k);
-        // The faces `p` sees (state 1), flooded from `f`; state 2: checked, unseen.
-        state.clear();
-        state.resize(h.faces.len(), 0);
+        // The faces `p` sees, flooded from `f`.
+        round += 1;
+        state.resize(h.faces.len(), (0, false));
         seen.clear();
         horizon.clear();
         orphans.clear();
-        state[f] = 1;
+        state[f] = (round, true);
         stack.push(f);
         while let Some(g) = stack.pop() {
             seen.push(g);
-            let tri = h.faces[g];
             for k in 0..3 {
-                let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                let Some(&n) = h.edges.get(&(b, a)) else {
+                let n = h.nbr[g][k] as usize;
+                let Some(&(checked, seen_n)) = state.get(n) else {
                     return exact_hull(points);
                 };
-                let n = n as usize;
-                if state[n] == 0 {
-                    state[n] = if h.height(n, p) > h.tol { 1 } else { 2 };
-                    if state[n] == 1 {
+                let seen_n = if checked == round {
+                    seen_n
+                } else {
+                    let s = h.height(n, p) > h.tol;
+                    state[n] = (round, s);
+                    if s {
                         stack.push(n);
                     }
-                }
-                if state[n] == 2 {
-                    horizon.push((a, b));
+                    s
+                };
+                if !seen_n {
+                    let tri = h.faces[g];
+                    horizon.push((tri[k], tri[(k + 1) % 3], n as u32));
                 }
             }
+        }
+        // The boundary as one loop (it is one when the seen region is a disc).
+        cycle.clear();
+        if let Some(&start) = horizon.first() {
+            cycle.push(start);
+            while cycle.len() < horizon.len() {
+                let to = cycle[cycle.len() - 1].1;
+                match horizon.iter().find(|e| e.0 == to) {
+                    Some(&e) if e != start => cycle.push(e),
+                    _ => break,
+                }
+            }
+        }
+        if cycle.len() != horizon.len() || cycle.len() < 3 || cycle[cycle.len() - 1].1 != cycle[0].0
+        {
+            return exact_hull(points);
         }
         for &g in &seen {
             orphans.append(&mut h.waiting[g]);
-            h.remove(g);
+            h.alive[g] = false;
         }
-        let first_new = h.faces.len();
-        for &(a, b) in &horizon {
-            if h.edges.contains_key(&(a, b)) {
-                // The seen region was not a disc: its boundary runs twice through a
-                // vertex.
-                return exact_hull(points);
+        // The fan: face i is (a, b, p) for boundary edge i, between faces i - 1 and i + 1.
+        let first_new = h.faces.len() as u32;
+        let m = cycle.len() as u32;
+        for (i, &(a, b, outer)) in cycle.iter().enumerate() {
+            let i = i as u32;
+            let f = first_new + i;
+            h.add(
+                [a, b, p],
+                [outer, first_new + (i + 1) % m, first_new + (i + m - 1) % m],
+            );
+            let o = &mut h.nbr[outer as usize];
+            let of = h.faces[outer as usize];
+            for j in 0..3 {
+                if of[j] == b && of[(j + 1) % 3] == a {
+                    o[j] = f;
+                }
             }
-            h.add([a, b, p]);
         }
-        h.assign(&orphans, first_new);
+        h.assign(&orphans, first_new as usize);
         // Faces before `f` may have waiting points only if new; new ones come after.
-        f = f.min(first_new);
+        f = f.min(first_new as usize);
     }
-    let tris: Vec<[u32; 3]> = (0..h.faces.len())
-        .filter(|&f| h.alive[f])
-        .map(|f| h.faces[f])
-        .collect();
-    let mut corners: Vec<u32> = tris.iter().flatten().copied().collect();
-    corners.sort_unstable();
-    corners.dedup();
-    let convex = (0..h.faces.len())
-        .filter(|&f| h.alive[f])
-        .all(|f| corners.iter().all(|&v| h.height(f, v) <= 2.0 * tol));
-    if h.edges.len() != 3 * tris.len() || !convex {
+    // The live faces, renumbered.
+    let mut index = vec![u32::MAX; h.faces.len()];
+    let mut mesh = HullMesh::default();
+    for g in (0..h.faces.len()).filter(|&g| h.alive[g]) {
+        index[g] = mesh.tris.len() as u32;
+        mesh.tris.push(h.faces[g]);
+    }
+    for g in (0..h.faces.len()).filter(|&g| h.alive[g]) {
+        let nbr = h.nbr[g].map(|n| index.get(n as usize).copied().unwrap_or(u32::MAX));
+        if nbr.contains(&u32::MAX) {
+            return exact_hull(points);
+        }
+        mesh.nbr.push(nbr);
+    }
+    // Convex at every edge: the far corner of the face across each edge lies behind (a
+    // closed surface convex at every edge bounds a convex solid).
+    let convex = (0..h.faces.len()).filter(|&g| h.alive[g]).all(|g| {
+        (0..3).all(|k| {
+            let (a, b) = (h.faces[g][k], h.faces[g][(k + 1) % 3]);
+            h.faces[h.nbr[g][k] as usize]
+                .iter()
+                .all(|&v| v == a || v == b || h.height(g, v) <= 2.0 * tol)
+        })
+    });
+    if !convex {
         return exact_hull(points);
     }
-    Some(tris)
+    Some(mesh)
+}
+
+/// [`hull_mesh`]'s triangles.
+#[cfg(test)]
+pub(crate) fn hull_triangles(points: &[DVec3]) -> Option<Vec<[u32; 3]>> {
+    hull_mesh(points).map(|m| m.tris)
 }
 
 /// The exact hull: the faces of the points' Delaunay tetrahedralization that have no
 /// neighbour (slower: the exact predicates are slow on the many points of a piece that
 /// lie in one plane).
-fn exact_hull(points: &[DVec3]) -> Option<Vec<[u32; 3]>> {
+fn exact_hull(points: &[DVec3]) -> Option<HullMesh> {
     let t = crate::delaunay::tetrahedralize(points).ok()?;
-    Some(t.hull_faces())
+    let tris = t.hull_faces();
+    let mut across: FastMap<(u32, u32), u32> = FastMap::default();
+    for (f, tri) in tris.iter().enumerate() {
+        for k in 0..3 {
+            across.insert((tri[k], tri[(k + 1) % 3]), f as u32);
+        }
+    }
+    let nbr = tris
+        .iter()
+        .map(|tri| {
+            let mut n = [u32::MAX; 3];
+            for k in 0..3 {
+                n[k] = *across.get(&(tri[(k + 1) % 3], tri[k]))?;
+            }
+            Some(n)
+        })
+        .collect::<Option<Vec<_>>>()?;
+    Some(HullMesh { tris, nbr })
 }
 
-/// The hull being built: its triangles (removed ones kept, not alive), their planes,
-/// and the face of each directed edge of the alive ones.
+/// The hull being built: its triangles (removed ones kept, not alive), their
+/// neighbours and planes, and the points waiting on each.
 struct Hull<'a> {
     pts: &'a [DVec3],
     faces: Vec<[u32; 3]>,
+    nbr: Vec<[u32; 3]>,
     /// Per face, its unit outward normal and offset.
     planes: Vec<(DVec3, f64)>,
     alive: Vec<bool>,
     /// Per face, the points waiting on it (lying in front of it).
     waiting: Vec<Vec<u32>>,
-    edges: FastMap<(u32, u32), u32>,
     /// How far in front of a face a point must lie to see it.
     tol: f64,
 }
@@ -162,15 +251,12 @@ impl Hull<'_> {
         n.dot(self.pts[p as usize]) - d
     }
 
-    fn add(&mut self, tri: [u32; 3]) {
-        let f = self.faces.len() as u32;
-        for k in 0..3 {
-            self.edges.insert((tri[k], tri[(k + 1) % 3]), f);
-        }
+    fn add(&mut self, tri: [u32; 3], nbr: [u32; 3]) {
         let [a, b, c] = tri.map(|i| self.pts[i as usize]);
         let n = (b - a).cross(c - a).normalize_or_zero();
         self.planes.push((n, n.dot(a)));
         self.faces.push(tri);
+        self.nbr.push(nbr);
         self.alive.push(true);
         self.waiting.push(Vec::new());
     }
@@ -188,17 +274,6 @@ impl Hull<'_> {
                 self.waiting[f].push(p);
             }
         }
-    }
-
-    fn remove(&mut self, f: usize) {
-        let tri = self.faces[f];
-        for k in 0..3 {
-            let e = (tri[k], tri[(k + 1) % 3]);
-            if self.edges.get(&e) == Some(&(f as u32)) {
-                self.edges.remove(&e);
-            }
-        }
-        self.alive[f] = false;
     }
 }
 

@@ -20,6 +20,9 @@ use super::polytope::{Outcome, Polytope, Scratch};
 use super::{Piece, Plane};
 use crate::util::bounds;
 
+/// The most a fragment's own hull may hold, over its volume, to be its one piece.
+const ONE_PIECE: f64 = 1.05;
+
 /// The most a fragment's inherited pieces may hold, over its own volume. A piece is a hull
 /// of a piece of the solid (convex only within the decomposition's tolerance), so it can
 /// reach past the solid; in a small fragment that excess can be a large part of it (the
@@ -57,11 +60,15 @@ impl Part {
 
 /// The convex pieces of fragment `p` (of volume `volume`), cut from the solid whose
 /// convex pieces are `parts` by the cells `cells` (each the negative side of all its
-/// planes; a fragment merged from several cells has them all): each cell within the
-/// fragment's bounding box, clipped by each part. Pieces under `MIN_PIECE_FRACTION` of
-/// the fragment are left out. Returns the pieces' points and their hulls' triangles, or
-/// `None` when no piece is left or when the pieces hold more than `MAX_EXCESS` times the
-/// fragment's volume (the caller then decomposes the fragment).
+/// planes; a fragment merged from several cells has them all).
+///
+/// A fragment whose own hull holds at most `ONE_PIECE` of it (most small ones: a cell of
+/// a solid is convex where the solid is, near enough) is that hull, one piece. Any other
+/// takes each cell within the fragment's bounding box, clipped by each part; pieces under
+/// `MIN_PIECE_FRACTION` of the fragment are left out, and pieces holding more than
+/// `MAX_EXCESS` times the fragment are cut back to its hull (or replaced by the hull when
+/// it holds less). Returns the pieces' points and their hulls' triangles, or `None` when
+/// no piece is left (the caller then decomposes the fragment).
 pub(crate) fn inherited_pieces(
     p: &Piece,
     volume: f64,
@@ -71,6 +78,12 @@ pub(crate) fn inherited_pieces(
 ) -> Option<ConvexPieces> {
     if p.pos.is_empty() || volume.is_nan() || volume <= 0.0 {
         return None;
+    }
+    let own = Polytope::hull(&p.pos)?;
+    let own_volume = own.volume();
+    if own_volume <= ONE_PIECE * volume {
+        let (pos, tris) = own.to_mesh();
+        return Some((vec![pos], vec![tris]));
     }
     let (lo, hi) = bounds(&p.pos);
     let min_volume = MIN_PIECE_FRACTION * volume;
@@ -109,8 +122,7 @@ pub(crate) fn inherited_pieces(
     if held > MAX_EXCESS * volume {
         // Too much outside the fragment: cut it back to the fragment's own hull, or take
         // that hull alone when it holds less.
-        let hull = Polytope::hull(&p.pos)?;
-        let planes = hull.face_planes();
+        let planes = own.face_planes();
         let mut kept = Vec::with_capacity(pieces.len());
         for (piece, _) in pieces {
             if let Some(q) = clip_all(&piece, &planes, eps, &mut scratch) {
@@ -122,9 +134,8 @@ pub(crate) fn inherited_pieces(
         }
         pieces = kept;
         let held: f64 = pieces.iter().map(|(_, v)| v).sum();
-        let whole = hull.volume();
-        if whole <= held {
-            pieces = vec![(hull, whole)];
+        if own_volume <= held {
+            pieces = vec![(own, own_volume)];
         }
     }
     if pieces.is_empty() {
@@ -133,11 +144,10 @@ pub(crate) fn inherited_pieces(
     Some(pieces.iter().map(|(p, _)| p.to_mesh()).unzip())
 }
 
-/// `poly` clipped by every plane; `None` once nothing is left. A plane that passes the
-/// ball around `poly`'s bounds keeps all of it or none, untested (the cut polytopes stay
-/// within the ball); the others cut in order of how far beyond them the ball's centre
-/// lies, so the planes that cut most away come first and later ones have less to cut
-/// (or nothing: a plane the polytope has shrunk away from is a cheap test).
+/// `poly` clipped by every plane; `None` once nothing is left. A plane that misses the
+/// box around what is left keeps all of it or none, untested (the box shrinks with each
+/// cut); the others cut in order of how far beyond them the first box's centre lies, so
+/// the planes that cut most away come first and later ones have less to cut, or miss.
 fn clip_all(
     poly: &Polytope,
     planes: &[Plane],
@@ -145,17 +155,19 @@ fn clip_all(
     scratch: &mut Scratch,
 ) -> Option<Polytope> {
     let (lo, hi) = poly.bounds();
-    let (centre, radius) = ((lo + hi) * 0.5, (hi - lo).length() * 0.5);
+    let (mut centre, mut half) = ((lo + hi) * 0.5, (hi - lo) * 0.5);
+    // How the box's centre lies against `plane`, over how far the box reaches from it.
+    let against =
+        |plane: &Plane, centre: DVec3, half: DVec3| (plane.eval(centre), plane.n.abs().dot(half));
     let order = &mut scratch.order;
     order.clear();
     for (k, plane) in planes.iter().enumerate() {
-        let len = plane.n.length();
-        let at = plane.eval(centre) / len;
-        if at > radius {
+        let (at, reach) = against(plane, centre, half);
+        if at > reach {
             return None;
         }
-        if at >= -radius {
-            order.push((at, k as u32));
+        if at >= -reach {
+            order.push((at / plane.n.length(), k as u32));
         }
     }
     order.sort_unstable_by(|a, b| b.0.total_cmp(&a.0));
@@ -164,8 +176,17 @@ fn clip_all(
     let mut next = scratch.take();
     for &(_, k) in &order {
         let plane = &planes[k as usize];
+        let (at, reach) = against(plane, centre, half);
+        if at < -reach {
+            continue;
+        }
         let from = current.as_ref().unwrap_or(poly);
-        match from.clip_into(plane, eps, scratch, &mut next) {
+        let outcome = if at > reach {
+            Outcome::Empty
+        } else {
+            from.clip_into(plane, eps, scratch, &mut next)
+        };
+        match outcome {
             Outcome::Unchanged => {}
             Outcome::Empty => {
                 scratch.give(next);
@@ -175,10 +196,14 @@ fn clip_all(
                 scratch.order = order;
                 return None;
             }
-            Outcome::Cut => match current.as_mut() {
-                Some(c) => std::mem::swap(c, &mut next),
-                None => current = Some(std::mem::replace(&mut next, scratch.take())),
-            },
+            Outcome::Cut => {
+                let (lo, hi) = next.bounds();
+                (centre, half) = ((lo + hi) * 0.5, (hi - lo) * 0.5);
+                match current.as_mut() {
+                    Some(c) => std::mem::swap(c, &mut next),
+                    None => current = Some(std::mem::replace(&mut next, scratch.take())),
+                }
+            }
         }
     }
     scratch.give(next);

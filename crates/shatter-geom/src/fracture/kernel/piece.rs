@@ -259,7 +259,7 @@ impl Piece {
     /// use).
     pub fn compact(&mut self) {
         let mut remap = vec![u32::MAX; self.pos.len()];
-        let mut pos = Vec::new();
+        let mut pos = Vec::with_capacity(self.pos.len());
         let old = &self.pos;
         let mut renumber = |i: &mut u32| {
             let r = &mut remap[*i as usize];

@@ -9,8 +9,8 @@
 use glam::DVec3;
 
 use super::Plane;
-use super::hull::hull_triangles;
-use crate::util::{FastMap, UnionFind};
+use super::hull::{HullMesh, hull_mesh};
+use crate::util::UnionFind;
 
 /// A convex polytope: its corners and its faces, each face a convex polygon of corner
 /// indices wound counter-clockwise seen from outside.
@@ -96,8 +96,8 @@ impl Polytope {
     /// plane joined into one face (a hull's flat regions come as many triangles);
     /// `None` when the points span no volume.
     pub fn hull(points: &[DVec3]) -> Option<Polytope> {
-        let tris = hull_triangles(points)?;
-        let (corners, start) = merged_faces(points, &tris);
+        let mesh = hull_mesh(points)?;
+        let (corners, start) = merged_faces(points, &mesh);
         Some(Polytope::from_faces(points, corners, start))
     }
 
@@ -507,11 +507,12 @@ fn fanned_faces(pos: &[DVec3], tris: &[[u32; 3]]) -> (Vec<u32>, Vec<u32>) {
     (corners, start)
 }
 
-/// The faces of the closed surface `tris` over `pos`: each group of neighbouring
-/// triangles in one plane (within [`COPLANAR`]) as one polygon, its boundary walked in
-/// the triangles' order; a group whose boundary is not one simple loop stays triangles.
-/// Returns the faces' corners and starts, as in [`Polytope`].
-fn merged_faces(pos: &[DVec3], tris: &[[u32; 3]]) -> (Vec<u32>, Vec<u32>) {
+/// The faces of the hull `mesh` over `pos`: each group of neighbouring triangles in one
+/// plane (within [`COPLANAR`]) as one polygon, its boundary walked in the triangles'
+/// order; a group whose boundary is not one simple loop stays triangles. Returns the
+/// faces' corners and starts, as in [`Polytope`].
+fn merged_faces(pos: &[DVec3], mesh: &HullMesh) -> (Vec<u32>, Vec<u32>) {
+    let tris = &mesh.tris;
     let normal: Vec<DVec3> = tris
         .iter()
         .map(|t| {
@@ -519,63 +520,50 @@ fn merged_faces(pos: &[DVec3], tris: &[[u32; 3]]) -> (Vec<u32>, Vec<u32>) {
             (b - a).cross(c - a).normalize_or_zero()
         })
         .collect();
-    let mut across: FastMap<(u32, u32), u32> = FastMap::default();
-    across.reserve(3 * tris.len());
-    for (t, tri) in tris.iter().enumerate() {
-        for k in 0..3 {
-            across.insert((tri[k], tri[(k + 1) % 3]), t as u32);
-        }
-    }
     let mut groups = UnionFind::new(tris.len());
-    for (t, tri) in tris.iter().enumerate() {
-        for k in 0..3 {
-            if let Some(&u) = across.get(&(tri[(k + 1) % 3], tri[k]))
-                && normal[t].dot(normal[u as usize]) >= 1.0 - COPLANAR
-            {
+    for (t, nbr) in mesh.nbr.iter().enumerate() {
+        for &u in nbr {
+            if normal[t].dot(normal[u as usize]) >= 1.0 - COPLANAR {
                 groups.union(t, u as usize);
             }
         }
     }
-    let mut members: Vec<Vec<u32>> = vec![Vec::new(); tris.len()];
-    for t in 0..tris.len() {
-        members[groups.find(t)].push(t as u32);
-    }
+    let root: Vec<usize> = (0..tris.len()).map(|t| groups.find(t)).collect();
+    // The triangles, group after group.
+    let mut order: Vec<u32> = (0..tris.len() as u32).collect();
+    order.sort_unstable_by_key(|&t| (root[t as usize], t));
     let (mut corners, mut start) = (Vec::with_capacity(3 * tris.len()), vec![0u32]);
-    let mut next: FastMap<u32, u32> = FastMap::default();
-    for group in members.iter().filter(|g| !g.is_empty()) {
-        next.clear();
-        let mut simple = true;
-        for &t in group {
-            let tri = tris[t as usize];
-            for k in 0..3 {
-                let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                let inner = across
-                    .get(&(b, a))
-                    .is_some_and(|&u| groups.find(u as usize) == groups.find(t as usize));
-                if !inner {
-                    simple &= next.insert(a, b).is_none();
+    let mut next: Vec<(u32, u32)> = Vec::new();
+    for group in order.chunk_by(|&a, &b| root[a as usize] == root[b as usize]) {
+        let first = corners.len();
+        let mut simple = group.len() > 1;
+        if simple {
+            next.clear();
+            for &t in group {
+                let tri = tris[t as usize];
+                for k in 0..3 {
+                    let u = mesh.nbr[t as usize][k] as usize;
+                    if root[u] != root[t as usize] {
+                        let a = tri[k];
+                        simple &= !next.iter().any(|e| e.0 == a);
+                        next.push((a, tri[(k + 1) % 3]));
+                    }
                 }
             }
-        }
-        let first = corners.len();
-        if simple && group.len() > 1 {
             // Walk the boundary; it must come back after using every edge once.
-            let (&v0, _) = next.iter().min_by_key(|(v, _)| **v).unwrap_or((&0, &0));
+            let v0 = next.first().map_or(0, |e| e.0);
             let mut v = v0;
-            loop {
+            while simple {
                 corners.push(v);
-                match next.get(&v) {
-                    Some(&w) if w != v0 && corners.len() - first < next.len() => v = w,
-                    Some(&w) if w == v0 => break,
-                    _ => {
-                        simple = false;
-                        break;
-                    }
+                match next.iter().find(|e| e.0 == v) {
+                    Some(&(_, w)) if w == v0 => break,
+                    Some(&(_, w)) if corners.len() - first < next.len() => v = w,
+                    _ => simple = false,
                 }
             }
             simple &= corners.len() - first == next.len();
         }
-        if simple && group.len() > 1 {
+        if simple {
             start.push(corners.len() as u32);
         } else {
             corners.truncate(first);
