@@ -220,6 +220,37 @@ fn a_cut_keeps_the_momentum_and_spin_the_body_had() {
 }
 
 #[test]
+fn a_cut_bird_inherits_convex_pieces_with_hulls_and_keeps_its_momentum() {
+    let mut spec = slab(50, on_impact());
+    spec.source = FractureSource::Shape {
+        shape: Shape::Bird,
+        params: FractureParams {
+            pieces: 50,
+            seed: 2,
+            ..Default::default()
+        },
+    };
+    spec.scale = Vec3::ONE;
+    let mut world = World::new(space());
+    let id = world.add_object(spec).unwrap();
+    let whole = world.object_fracture(id).unwrap();
+    assert!(whole.fragments[0].convex_pieces.len() > 16);
+    world.set_object_velocity(id, Vec3::ZERO, Vec3::new(0.5, 1.0, -2.0), Vec3::Y);
+    let point = Vec3::new(0.1, 0.2, 0.3);
+    let (p0, l0) = world.object_momentum(id, point);
+    let cut = world.cut_now(id, 0, Vec3::new(0.0, 0.0, 1.5)).unwrap();
+    let fracture = world.object_fracture(cut).unwrap();
+    assert!(fracture.fragments.len() >= 50);
+    for (i, f) in fracture.fragments.iter().enumerate() {
+        assert!(!f.convex_pieces.is_empty(), "fragment {i}");
+        assert_eq!(f.convex_hulls.len(), f.convex_pieces.len(), "fragment {i}");
+    }
+    let (p1, l1) = world.object_momentum(cut, point);
+    assert!((p1 - p0).length() / p0.length() < 1e-4, "{p0} -> {p1}");
+    assert!((l1 - l0).length() / l0.length() < 1e-4, "{l0} -> {l1}");
+}
+
+#[test]
 fn a_hit_on_a_loose_fragment_cuts_it_again_only_below_the_depth() {
     for depth in [1u32, 2] {
         let mut world = World::new(space());

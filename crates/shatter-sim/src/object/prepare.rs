@@ -400,4 +400,37 @@ mod tests {
         // Box 1×3×4 at unit density: Ixx = m(9+16)/12.
         assert!((i.x_axis.x - m * 25.0 / 12.0).abs() < 1e-9);
     }
+
+    #[test]
+    fn a_piece_with_its_hull_is_built_from_it_and_a_broken_hull_is_computed_again() {
+        use rapier3d::prelude::ShapeType;
+        let whole = crate::runtime::whole(&shatter_geom::model::Model::from_mesh(
+            shatter_geom::shapes::cube(),
+        ))
+        .unwrap();
+        let cut =
+            crate::runtime::cut_fragment(&whole, 0, DVec3::new(0.0, 0.5, 0.0), 10, 3).unwrap();
+        let shapes = collision_shapes(&cut, Vec3::ONE);
+        for (f, s) in cut.fragments.iter().zip(&shapes) {
+            assert_eq!(s.len(), f.convex_pieces.len());
+            for (shape, points) in s.iter().zip(&f.convex_pieces) {
+                assert_eq!(shape.shape_type(), ShapeType::ConvexPolyhedron);
+                let poly = shape.as_convex_polyhedron().unwrap();
+                // From the hull's triangles: every point of the piece is a corner.
+                assert_eq!(poly.points().len(), points.len());
+            }
+        }
+        // Hull triangles that do not close up (a file's, say) are not trusted.
+        let mut broken = cut.clone();
+        for f in &mut broken.fragments {
+            for hull in &mut f.convex_hulls {
+                hull.pop();
+            }
+        }
+        let again = collision_shapes(&broken, Vec3::ONE);
+        assert_eq!(
+            again.iter().map(Vec::len).sum::<usize>(),
+            shapes.iter().map(Vec::len).sum::<usize>()
+        );
+    }
 }

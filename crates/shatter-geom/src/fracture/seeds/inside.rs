@@ -18,7 +18,10 @@ pub(crate) struct InsideTester<'a> {
     hi: DVec3,
     n: usize,
     cell: DVec2,
-    buckets: Vec<Vec<u32>>,
+    /// The triangles of each grid cell, cell after cell: cell `k` holds
+    /// `triangles[start[k]..start[k + 1]]`.
+    start: Vec<u32>,
+    triangles: Vec<u32>,
 }
 
 impl<'a> InsideTester<'a> {
@@ -28,14 +31,41 @@ impl<'a> InsideTester<'a> {
         let n = ((piece.tris.len() as f64 / 2.0).sqrt().ceil() as usize).clamp(1, 128);
         let ext = DVec2::new(hi.x - lo.x, hi.y - lo.y).max(DVec2::splat(f64::MIN_POSITIVE));
         let cell = ext / n as f64;
-        let mut buckets = vec![Vec::new(); n * n];
         let idx = |v: f64, o: f64, c: f64| (((v - o) / c) as usize).min(n - 1);
-        for (t, tri) in piece.tris.iter().enumerate() {
-            let [a, b, c] = tri.map(|i| piece.pos[i as usize]);
-            let (tlo, thi) = (a.min(b).min(c), a.max(b).max(c));
-            for i in idx(tlo.x, lo.x, cell.x)..=idx(thi.x, lo.x, cell.x) {
-                for j in idx(tlo.y, lo.y, cell.y)..=idx(thi.y, lo.y, cell.y) {
-                    buckets[j * n + i].push(t as u32);
+        // Each triangle's range of grid cells; counted, then filled in (no list per cell).
+        let ranges: Vec<[usize; 4]> = piece
+            .tris
+            .iter()
+            .map(|tri| {
+                let [a, b, c] = tri.map(|i| piece.pos[i as usize]);
+                let (tlo, thi) = (a.min(b).min(c), a.max(b).max(c));
+                [
+                    idx(tlo.x, lo.x, cell.x),
+                    idx(thi.x, lo.x, cell.x),
+                    idx(tlo.y, lo.y, cell.y),
+                    idx(thi.y, lo.y, cell.y),
+                ]
+            })
+            .collect();
+        let mut start = vec![0u32; n * n + 1];
+        for &[i0, i1, j0, j1] in &ranges {
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    start[j * n + i + 1] += 1;
+                }
+            }
+        }
+        for k in 0..n * n {
+            start[k + 1] += start[k];
+        }
+        let mut fill: Vec<u32> = start[..n * n].to_vec();
+        let mut triangles = vec![0u32; start[n * n] as usize];
+        for (t, &[i0, i1, j0, j1]) in ranges.iter().enumerate() {
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    let slot = &mut fill[j * n + i];
+                    triangles[*slot as usize] = t as u32;
+                    *slot += 1;
                 }
             }
         }
@@ -45,7 +75,8 @@ impl<'a> InsideTester<'a> {
             hi,
             n,
             cell,
-            buckets,
+            start,
+            triangles,
         }
     }
 
@@ -65,7 +96,8 @@ impl<'a> InsideTester<'a> {
         let mut crossings = 0u32;
         // Distinct triangles may share the ray's hit on an edge: too close is ambiguous.
         let tol = 1e-9;
-        for &t in &self.buckets[j * self.n + i] {
+        let k = j * self.n + i;
+        for &t in &self.triangles[self.start[k] as usize..self.start[k + 1] as usize] {
             let [a, b, c] = self.piece.tris[t as usize].map(|k| self.piece.pos[k as usize]);
             let (a2, b2, c2) = (a.truncate(), b.truncate(), c.truncate());
             let area = (b2 - a2).perp_dot(c2 - a2);
