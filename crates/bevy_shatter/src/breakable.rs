@@ -86,7 +86,7 @@ pub struct Breakable {
     /// ([`shatter_sim::runtime::whole`], level 0). A hit on a body holding a single
     /// fragment that [`RuntimeFracture::cuts`] allows, whose contact impulse passes
     /// [`RuntimeFracture::impulse`] (or [`Breakable::strength`] · dt), cuts that
-    /// fragment in that step around the hit ([`shatter_sim::runtime::cut_at`],
+    /// fragment in that step around the hit ([`shatter_sim::runtime::cut_fragment`],
     /// [`shatter_sim::runtime::pieces_at`] of [`Breakable::pieces`] for its level) into
     /// a new bonded object one level deeper (a [`crate::RuntimeFractured`] message).
     pub runtime: RuntimeFracture,

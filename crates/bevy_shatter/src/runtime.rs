@@ -1,7 +1,7 @@
 //! Runtime fracture on avian bodies, as shatter's own world does it
 //! (`shatter_sim::world::runtime_step`): a hit on a body holding a single cuttable
 //! fragment, hard enough, cuts that fragment in that step around the hit point with
-//! [`runtime::cut_at`]. The old body goes; the cut's fragments become a new object (its
+//! [`runtime::cut_fragment`] (its new fragments inherit its convex pieces). The old body goes; the cut's fragments become a new object (its
 //! own [`ShatterObject`] entity, one level deeper) on one bonded body at the same pose,
 //! moving as the material did there. The hit is kept ([`PendingHit`]) and loads the new
 //! bonds in the next step, once avian has given the new body its mass, so the cells
@@ -204,8 +204,9 @@ fn cut(
     // Bodies carry the object's frame (fragments sit at the identity under them).
     let local = transform.rotation.inverse() * (request.point - transform.translation);
     let seed = shatter_sim::runtime::cut_seed(cuttable.breakable.seed, f, level);
-    let fracture = runtime::cut_at(
-        &runtime::fragment_model(&object.fracture, f as usize),
+    let fracture = runtime::cut_fragment(
+        &object.fracture,
+        f as usize,
         from_bevy(local).as_dvec3(),
         runtime::pieces_at(cuttable.breakable.pieces, level),
         seed,

@@ -571,7 +571,6 @@ fn finish_cells(
 
 /// The fragment of the closed piece `p`, its convex pieces made as `convex` says (when
 /// clipped, by `cells`, the planes of the cells it was made of).
-#[inline(never)]
 fn built_fragment(p: &Piece, convex: &LocalConvex, cells: &[&[Plane]], eps: f64) -> Fragment {
     match convex {
         LocalConvex::Decomposed => fragment(p),

@@ -123,7 +123,6 @@ pub(crate) fn voronoi_cells(
 /// connected component, caps triangulated: cut each time by the plane that cuts away
 /// the most of what is left (counted in vertices), so the pieces shrink fast and later
 /// cuts have less to go through; a plane with no vertex beyond it cannot cut.
-#[inline(never)]
 fn cut_cell(mesh: &Piece, mut planes: Vec<Plane>, eps: f64) -> Vec<Piece> {
     let mut cell: Option<Piece> = None;
     while !planes.is_empty() {
