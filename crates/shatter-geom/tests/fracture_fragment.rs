@@ -15,7 +15,7 @@ use std::ops::RangeInclusive;
 
 use shapes::{diag, point_triangle_distance, winding};
 use shatter_geom::fracture::{
-    Fracture, FractureParams, Method, Pattern, Seeds, fracture_fragment, intact,
+    Fracture, FractureError, FractureParams, Method, Pattern, Seeds, fracture_fragment, intact,
 };
 use shatter_geom::model::Model;
 use shatter_geom::{DVec3, TriMesh, shapes as builtin};
@@ -221,4 +221,19 @@ fn fragments_of_fragments_inherit_their_pieces_too() {
         let what = format!("bird fragment {f}");
         check_pieces(&what, &again, diag(&mesh), NEAR, 0.98..=1.5);
     }
+}
+
+#[test]
+fn pieces_without_hulls_get_them_and_a_missing_fragment_is_an_error() {
+    let mesh = builtin::bird();
+    let mut whole = intact(&Model::from_mesh(mesh.clone())).unwrap();
+    // As a fracture read from a file comes: pieces without their hulls.
+    whole.fragments[0].convex_hulls.clear();
+    let cut = fracture_fragment(&whole, 0, &radial(20, front(&mesh), 5)).unwrap();
+    assert_eq!(cut.validate(Some(mesh.volume())), Ok(()));
+    check_pieces("bird without hulls", &cut, diag(&mesh), NEAR, 0.98..=1.5);
+    assert!(matches!(
+        fracture_fragment(&whole, 1, &radial(20, front(&mesh), 5)),
+        Err(FractureError::BadFragment { fragment: 1, .. })
+    ));
 }

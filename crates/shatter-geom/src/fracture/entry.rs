@@ -131,7 +131,9 @@ pub fn fracture_model(model: &Model, params: &FractureParams) -> Result<Fracture
 /// every new fragment (a runtime cut) and nests: the new fragments can be cut the same
 /// way. Pieces are as close to their fragment as the fragment's were to it: give the
 /// solid first cut fine pieces ([`intact`]). The other methods, and a fragment without
-/// convex pieces, decompose the new fragments as [`fracture_model`] does.
+/// convex pieces, decompose the new fragments as [`fracture_model`] does; pieces without
+/// hulls (a fracture read from a file) get theirs computed first. An `f` past the
+/// fragments is [`FractureError::BadFragment`].
 ///
 /// ```
 /// use shatter_geom::fracture::{fracture_fragment, intact, FractureParams};
