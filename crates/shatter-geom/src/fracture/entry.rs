@@ -81,7 +81,8 @@ pub fn fracture(mesh: &TriMesh, params: &FractureParams) -> Result<Fracture, Fra
 /// [`Fracture::materials`], flat normals, white colours and planar UVs: a projection
 /// onto the cut's plane, in a basis of the plane alone and one world-space scale for
 /// the whole object (one over its largest extent), so both sides of a crack map a point
-/// to the same UV. Attributes the model lacks stay absent.
+/// to the same UV. Every fragment has UVs: where the model has none, surface triangles get
+/// a box projection in the same frame. Normals and colours the model lacks stay absent.
 ///
 /// ```
 /// use shatter_geom::fracture::{fracture_model, FractureParams, Method};
