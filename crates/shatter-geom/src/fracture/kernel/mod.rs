@@ -9,6 +9,7 @@ mod edges;
 mod face;
 mod piece;
 mod plane;
+mod solids;
 pub(crate) mod union;
 
 #[cfg(test)]
@@ -19,3 +20,4 @@ pub(crate) mod fast_path_tests;
 pub(crate) use face::Face;
 pub(crate) use piece::{Piece, SURFACE, is_surface, mesh_scale, source_triangle};
 pub(crate) use plane::Plane;
+pub(crate) use solids::with_cavities;

@@ -105,7 +105,7 @@ pub(crate) fn voronoi_with(
             }
             let mut cell = cell.unwrap_or_else(|| mesh.clone());
             cell.close_faces();
-            cell.components()
+            cell.solids()
         })
         .collect();
     let cells: Vec<Piece> = per_seed.into_iter().flatten().collect();
