@@ -4,7 +4,10 @@
 
 use glam::{DMat3, DVec3};
 
-use crate::stress::spring::{Spring, invert, outer, skew};
+use crate::stress::local::LocalSpring;
+#[cfg(test)]
+use crate::stress::spring::Spring;
+use crate::stress::spring::{invert, outer, skew};
 
 /// A 6×6 block `[[uu, ut], [tu, tt]]` acting on `(u, θ)`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -93,10 +96,16 @@ impl Block6 {
     /// The stiffness blocks `(K_aa, K_ab, K_bb)` of one bond's springs (`K_ba = K_abᵀ`):
     /// the relative motion at the face is `δ = J_a·x_a + J_b·x_b` with
     /// `J = ±[I, −skew(r)]`, and the rotations' `θ_b − θ_a`.
+    #[cfg(test)]
     pub fn of_spring(s: &Spring) -> (Block6, Block6, Block6) {
+        Block6::of_local(&LocalSpring::new(s, 0, 1))
+    }
+
+    /// [`Block6::of_spring`] of a spring with local ends.
+    pub fn of_local(s: &LocalSpring) -> (Block6, Block6, Block6) {
         let nn = outer(s.n, s.n);
-        let k = DMat3::from_diagonal(DVec3::splat(s.ks)) + nn * (s.kn - s.ks);
-        let kr = DMat3::from_diagonal(DVec3::splat(s.kb)) + nn * (s.kt - s.kb);
+        let k = DMat3::from_diagonal(DVec3::splat(s.ks)) + nn * s.dn;
+        let kr = DMat3::from_diagonal(DVec3::splat(s.kb)) + nn * s.dt;
         let (sa, sb) = (skew(s.ra), skew(s.rb));
         let block = |si: DMat3, sj: DMat3| Block6 {
             uu: k,

@@ -32,6 +32,7 @@
 mod block;
 mod graph;
 mod limits;
+mod local;
 mod multigrid;
 #[cfg(test)]
 mod multigrid_tests;

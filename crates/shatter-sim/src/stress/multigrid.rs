@@ -21,7 +21,7 @@
 use glam::DVec3;
 
 use crate::stress::block::{Block6, Dense};
-use crate::stress::spring::Spring;
+use crate::stress::local::{Dof, LocalSprings, ZERO};
 
 /// Levels with at most this many nodes are solved densely.
 const COARSEST: usize = 48;
@@ -29,10 +29,7 @@ const COARSEST: usize = 48;
 const SWEEPS: usize = 1;
 /// Coarse corrections per level: 1 is a V-cycle, 2 a W-cycle.
 const CYCLES: usize = 2;
-/// The finest level is smoothed by damped block Jacobi (two passes over the springs per
-/// cycle) rather than Gauss-Seidel (six).
-const JACOBI: bool = true;
-/// The damping of that block Jacobi.
+/// The damping of the finest level's block Jacobi.
 const OMEGA: f64 = 0.7;
 /// Coarsening that keeps more than this fraction of the nodes has stalled.
 const STALL: f64 = 0.85;
@@ -50,103 +47,6 @@ struct Level {
     /// Each node's group on the next level, and its offset from the group's point.
     parent: Vec<u32>,
     offset: Vec<DVec3>,
-    /// The finest level's couplings as its springs: a third of the blocks' memory, so
-    /// its sweeps (memory-bound) are faster than through the blocks.
-    springs: Option<FineSprings>,
-}
-
-/// Per free node, the springs that couple it to other free nodes.
-#[derive(Debug, Clone)]
-struct FineSprings {
-    start: Vec<u32>,
-    /// (the spring, the other end's index, whether this node is the spring's `b`).
-    ends: Vec<(Spring, u32, bool)>,
-    /// Every spring with a free end, with its ends' indices (`u32::MAX`: anchored), for
-    /// `K·x` one spring at a time.
-    all: Vec<(Spring, u32, u32)>,
-}
-
-impl FineSprings {
-    fn new(springs: &[&Spring], local: &[u32], n: usize) -> FineSprings {
-        let mut lists: Vec<Vec<(Spring, u32, bool)>> = vec![Vec::new(); n];
-        for &s in springs {
-            let (la, lb) = (local[s.a as usize], local[s.b as usize]);
-            if la != u32::MAX && lb != u32::MAX {
-                lists[la as usize].push((*s, lb, false));
-                lists[lb as usize].push((*s, la, true));
-            }
-        }
-        let mut start = vec![0u32];
-        let mut ends = Vec::new();
-        for list in lists {
-            ends.extend(list);
-            start.push(ends.len() as u32);
-        }
-        let all = springs
-            .iter()
-            .map(|s| (**s, local[s.a as usize], local[s.b as usize]))
-            .filter(|(_, la, lb)| *la != u32::MAX || *lb != u32::MAX)
-            .collect();
-        FineSprings { start, ends, all }
-    }
-
-    /// `out = K·x`, one pass over the springs (each once).
-    fn times(&self, x: &[(DVec3, DVec3)], out: &mut [(DVec3, DVec3)]) {
-        let zero = (DVec3::ZERO, DVec3::ZERO);
-        out.iter_mut().for_each(|v| *v = zero);
-        for (s, la, lb) in &self.all {
-            let (ua, ta) = if *la != u32::MAX {
-                x[*la as usize]
-            } else {
-                zero
-            };
-            let (ub, tb) = if *lb != u32::MAX {
-                x[*lb as usize]
-            } else {
-                zero
-            };
-            let d = (ub + tb.cross(s.rb)) - (ua + ta.cross(s.ra));
-            let f = s.ks * d + ((s.kn - s.ks) * s.n.dot(d)) * s.n;
-            let dt = tb - ta;
-            let m = s.kb * dt + ((s.kt - s.kb) * s.n.dot(dt)) * s.n;
-            if *lb != u32::MAX {
-                let o = &mut out[*lb as usize];
-                o.0 += f;
-                o.1 += s.rb.cross(f) + m;
-            }
-            if *la != u32::MAX {
-                let o = &mut out[*la as usize];
-                o.0 -= f;
-                o.1 -= s.ra.cross(f) + m;
-            }
-        }
-    }
-
-    /// `b_i − Σ_{j≠i} K_ij·x_j` from the springs: the load each spring puts on node `i`
-    /// when only its other end moves.
-    #[inline]
-    fn off_residual(&self, i: usize, x: &[(DVec3, DVec3)], b: (DVec3, DVec3)) -> (DVec3, DVec3) {
-        let (mut ru, mut rt) = b;
-        for (s, j, is_b) in &self.ends[self.start[i] as usize..self.start[i + 1] as usize] {
-            let (u, t) = x[*j as usize];
-            // Only the other end moves: δ and dθ are its motion at the face, signed.
-            let (d, dt, r) = if *is_b {
-                (-(u + t.cross(s.ra)), -t, s.rb)
-            } else {
-                (u + t.cross(s.rb), t, s.ra)
-            };
-            let f = s.ks * d + ((s.kn - s.ks) * s.n.dot(d)) * s.n;
-            let m = s.kb * dt + ((s.kt - s.kb) * s.n.dot(dt)) * s.n;
-            if *is_b {
-                ru -= f;
-                rt -= r.cross(f) + m;
-            } else {
-                ru += f;
-                rt += r.cross(f) + m;
-            }
-        }
-        (ru, rt)
-    }
 }
 
 impl Level {
@@ -186,7 +86,6 @@ impl Level {
             pos,
             parent: Vec::new(),
             offset: Vec::new(),
-            springs: None,
         }
     }
 
@@ -196,10 +95,7 @@ impl Level {
 
     /// `b_i − Σ_{j≠i} K_ij·x_j`.
     #[inline]
-    fn off_residual(&self, i: usize, x: &[(DVec3, DVec3)], b: (DVec3, DVec3)) -> (DVec3, DVec3) {
-        if let Some(springs) = &self.springs {
-            return springs.off_residual(i, x, b);
-        }
+    fn off_residual(&self, i: usize, x: &[Dof], b: Dof) -> Dof {
         let (mut ru, mut rt) = b;
         for k in self.row(i) {
             let (u, t) = x[self.cols[k] as usize];
@@ -211,12 +107,35 @@ impl Level {
     }
 
     /// One block Gauss-Seidel sweep, forward or backward.
-    fn sweep(&self, x: &mut [(DVec3, DVec3)], b: &[(DVec3, DVec3)], forward: bool) {
+    fn sweep(&self, x: &mut [Dof], b: &[Dof], forward: bool) {
         let n = self.len();
         for step in 0..n {
             let i = if forward { step } else { n - 1 - step };
             let (ru, rt) = self.off_residual(i, x, b[i]);
             x[i] = self.diag_inv[i].apply(ru, rt);
+        }
+    }
+
+    /// `out += Pᵀ·(b − K·x)` on the next level: each node's residual, moved to its
+    /// group's point.
+    fn restrict_residual(&self, x: &[Dof], b: &[Dof], out: &mut [Dof]) {
+        out.fill(ZERO);
+        for i in 0..self.len() {
+            let (ru, rt) = self.off_residual(i, x, b[i]);
+            let (du, dt) = self.diag[i].apply(x[i].0, x[i].1);
+            let (fu, ft) = (ru - du, rt - dt);
+            let g = &mut out[self.parent[i] as usize];
+            g.0 += fu;
+            g.1 += ft + self.offset[i].cross(fu);
+        }
+    }
+
+    /// `x += P·xc`: each node moves with its group as a rigid body.
+    fn prolong_add(&self, xc: &[Dof], x: &mut [Dof]) {
+        for (i, xi) in x.iter_mut().enumerate().take(self.len()) {
+            let (u, t) = xc[self.parent[i] as usize];
+            xi.0 += u + t.cross(self.offset[i]);
+            xi.1 += t;
         }
     }
 
@@ -302,36 +221,69 @@ impl Level {
 /// The hierarchy of one anchored island.
 #[derive(Debug, Clone)]
 pub(super) struct Multigrid {
+    /// The finest level's springs (local ends, anchored ends at `n`): its `K·x` goes
+    /// through them, a third of the memory of its blocks.
+    springs: LocalSprings,
     levels: Vec<Level>,
     /// The coarsest level's factor, when it is small enough.
     coarse: Option<Dense>,
 }
 
-impl Multigrid {
-    /// The hierarchy of the free nodes `local` (`local[v]`: node `v`'s index among the
-    /// island's free nodes, `u32::MAX` when anchored or elsewhere) over `springs`, with
-    /// the nodes' positions `pos` (indexed by node).
-    pub fn new(springs: &[&Spring], local: &[u32], free: &[u32], pos: &[DVec3]) -> Multigrid {
-        let n = free.len();
-        let mut diag = vec![Block6::ZERO; n];
-        let mut entries = Vec::with_capacity(2 * springs.len());
-        for s in springs {
-            let (kaa, kab, kbb) = Block6::of_spring(s);
-            let (la, lb) = (local[s.a as usize], local[s.b as usize]);
-            if la != u32::MAX {
-                diag[la as usize].add(&kaa);
-            }
-            if lb != u32::MAX {
-                diag[lb as usize].add(&kbb);
-            }
-            if la != u32::MAX && lb != u32::MAX {
-                entries.push((la, lb, kab));
-                entries.push((lb, la, kab.transpose()));
+/// The vectors of one level's cycle.
+#[derive(Debug, Clone, Default)]
+struct LevelWork {
+    b: Vec<Dof>,
+    x: Vec<Dof>,
+    t: Vec<Dof>,
+}
+
+/// Reusable vectors for [`Multigrid::apply`] (any hierarchy: they grow as needed).
+#[derive(Debug, Clone, Default)]
+pub(super) struct Work {
+    levels: Vec<LevelWork>,
+}
+
+impl Work {
+    /// Room for `mg`'s levels.
+    fn fit(&mut self, mg: &Multigrid) {
+        if self.levels.len() < mg.levels.len() {
+            self.levels.resize_with(mg.levels.len(), LevelWork::default);
+        }
+        for (w, level) in self.levels.iter_mut().zip(&mg.levels) {
+            // The finest level has the anchored slot too.
+            let n = level.len() + 1;
+            for v in [&mut w.b, &mut w.x, &mut w.t] {
+                if v.len() != n {
+                    v.clear();
+                    v.resize(n, ZERO);
+                }
             }
         }
-        let points = free.iter().map(|&v| pos[v as usize]).collect();
-        let mut fine = Level::new(diag, entries, points);
-        fine.springs = Some(FineSprings::new(springs, local, n));
+    }
+}
+
+impl Multigrid {
+    /// The hierarchy of an island's springs (free nodes `0..n`, see
+    /// [`LocalSprings`]) with the free nodes' positions `pos`.
+    pub fn new(springs: &LocalSprings, pos: &[DVec3]) -> Multigrid {
+        let n = springs.n;
+        let mut diag = vec![Block6::ZERO; n];
+        let mut entries = Vec::with_capacity(2 * springs.springs.len());
+        for s in &springs.springs {
+            let (kaa, kab, kbb) = Block6::of_local(s);
+            let (la, lb) = (s.a as usize, s.b as usize);
+            if la < n {
+                diag[la].add(&kaa);
+            }
+            if lb < n {
+                diag[lb].add(&kbb);
+            }
+            if la < n && lb < n {
+                entries.push((la as u32, lb as u32, kab));
+                entries.push((lb as u32, la as u32, kab.transpose()));
+            }
+        }
+        let fine = Level::new(diag, entries, pos.to_vec());
         let mut levels = vec![fine];
         loop {
             let last = levels.last_mut().expect("one level");
@@ -358,7 +310,16 @@ impl Multigrid {
                     .map(|k| bottom.offd[k])
             })
         });
-        Multigrid { levels, coarse }
+        Multigrid {
+            springs: springs.clone(),
+            levels,
+            coarse,
+        }
+    }
+
+    /// Free nodes of the finest level.
+    pub fn len(&self) -> usize {
+        self.levels[0].len()
     }
 
     /// Levels, the finest first.
@@ -369,18 +330,25 @@ impl Multigrid {
 
     /// Nodes of level `l`.
     #[cfg(test)]
-    pub fn len(&self, l: usize) -> usize {
+    pub fn level_len(&self, l: usize) -> usize {
         self.levels[l].len()
     }
 
-    /// `K_l·x` (for tests).
+    /// `K_l·x` (for tests; the finest level through its springs).
     #[cfg(test)]
-    pub fn times(&self, l: usize, x: &[(DVec3, DVec3)]) -> Vec<(DVec3, DVec3)> {
+    pub fn times(&self, l: usize, x: &[Dof]) -> Vec<Dof> {
         let level = &self.levels[l];
-        let zero = vec![(DVec3::ZERO, DVec3::ZERO); x.len()];
+        if l == 0 {
+            let mut xs = x.to_vec();
+            xs.push(ZERO);
+            let mut out = vec![ZERO; xs.len()];
+            self.springs.times(&xs, &mut out);
+            out.pop();
+            return out;
+        }
         (0..level.len())
             .map(|i| {
-                let (ru, rt) = level.off_residual(i, x, zero[i]);
+                let (ru, rt) = level.off_residual(i, x, ZERO);
                 let (du, dt) = level.diag[i].apply(x[i].0, x[i].1);
                 (du - ru, dt - rt)
             })
@@ -389,21 +357,17 @@ impl Multigrid {
 
     /// `P·X` from level `l + 1` to level `l` (for tests).
     #[cfg(test)]
-    pub fn prolong(&self, l: usize, xc: &[(DVec3, DVec3)]) -> Vec<(DVec3, DVec3)> {
-        let level = &self.levels[l];
-        (0..level.len())
-            .map(|i| {
-                let (u, t) = xc[level.parent[i] as usize];
-                (u + t.cross(level.offset[i]), t)
-            })
-            .collect()
+    pub fn prolong(&self, l: usize, xc: &[Dof]) -> Vec<Dof> {
+        let mut x = vec![ZERO; self.levels[l].len()];
+        self.levels[l].prolong_add(xc, &mut x);
+        x
     }
 
     /// `Pᵀ·f` from level `l` to level `l + 1` (for tests).
     #[cfg(test)]
-    pub fn restrict(&self, l: usize, f: &[(DVec3, DVec3)]) -> Vec<(DVec3, DVec3)> {
+    pub fn restrict(&self, l: usize, f: &[Dof]) -> Vec<Dof> {
         let level = &self.levels[l];
-        let mut out = vec![(DVec3::ZERO, DVec3::ZERO); self.levels[l + 1].len()];
+        let mut out = vec![ZERO; self.levels[l + 1].len()];
         for (i, &(fu, ft)) in f.iter().enumerate() {
             let g = &mut out[level.parent[i] as usize];
             g.0 += fu;
@@ -412,99 +376,105 @@ impl Multigrid {
         out
     }
 
-    /// `z ≈ K⁻¹·r`: one symmetric W-cycle.
-    pub fn apply(&self, r: &[(DVec3, DVec3)]) -> Vec<(DVec3, DVec3)> {
-        self.cycle(0, r)
+    /// `z ≈ K⁻¹·r` (one symmetric W-cycle), allocating its work (for tests).
+    #[cfg(test)]
+    pub fn apply_alloc(&self, r: &[Dof]) -> Vec<Dof> {
+        let mut rs = r.to_vec();
+        rs.push(ZERO);
+        let mut z = vec![ZERO; rs.len()];
+        self.apply(&rs, &mut z, &mut Work::default());
+        z.pop();
+        z
+    }
+
+    /// `z ≈ K⁻¹·r`: one symmetric W-cycle. `r` and `z` have the finest level's nodes and
+    /// the anchored slot (`r`'s is ignored, `z`'s left zero).
+    pub fn apply(&self, r: &[Dof], z: &mut [Dof], work: &mut Work) {
+        work.fit(self);
+        let (fine, coarse) = work.levels.split_at_mut(1);
+        let w = &mut fine[0];
+        let n = self.len();
+        w.b[..n].copy_from_slice(&r[..n]);
+        w.b[n] = ZERO;
+        if self.levels.len() == 1 {
+            self.bottom(&w.b[..n], &mut w.x[..n]);
+        } else {
+            self.fine_cycle(w, coarse);
+        }
+        z[..n].copy_from_slice(&w.x[..n]);
+        z[n] = ZERO;
     }
 
     /// The finest level's cycle with damped block-Jacobi smoothing: `x = ω·D⁻¹·b`, the
     /// coarse correction of `b − K·x`, then `x += ω·D⁻¹·(b − K·x)`. Two passes over the
     /// springs where Gauss-Seidel makes six (each sweep and residual visits every
     /// spring from both ends), and symmetric, as conjugate gradients need.
-    fn fine_cycle(
-        &self,
-        level: &Level,
-        springs: &FineSprings,
-        b: &[(DVec3, DVec3)],
-    ) -> Vec<(DVec3, DVec3)> {
+    fn fine_cycle(&self, w: &mut LevelWork, coarse: &mut [LevelWork]) {
+        let level = &self.levels[0];
         let n = level.len();
-        let zero = (DVec3::ZERO, DVec3::ZERO);
-        let mut x: Vec<(DVec3, DVec3)> = (0..n)
-            .map(|i| {
-                let (u, t) = level.diag_inv[i].apply(b[i].0, b[i].1);
-                (u * OMEGA, t * OMEGA)
-            })
-            .collect();
-        let mut kx = vec![zero; n];
-        springs.times(&x, &mut kx);
-        let mut bc = vec![zero; self.levels[1].len()];
         for i in 0..n {
-            let (fu, ft) = (b[i].0 - kx[i].0, b[i].1 - kx[i].1);
+            let (u, t) = level.diag_inv[i].apply(w.b[i].0, w.b[i].1);
+            w.x[i] = (u * OMEGA, t * OMEGA);
+        }
+        w.x[n] = ZERO;
+        self.springs.times(&w.x, &mut w.t);
+        let bc = &mut coarse[0].b;
+        bc.fill(ZERO);
+        for i in 0..n {
+            let (fu, ft) = (w.b[i].0 - w.t[i].0, w.b[i].1 - w.t[i].1);
             let g = &mut bc[level.parent[i] as usize];
             g.0 += fu;
             g.1 += ft + level.offset[i].cross(fu);
         }
-        let xc = self.cycle(1, &bc);
+        self.cycle(1, coarse);
+        level.prolong_add(&coarse[0].x, &mut w.x[..n]);
+        self.springs.times(&w.x, &mut w.t);
         for i in 0..n {
-            let (u, t) = xc[level.parent[i] as usize];
-            x[i].0 += u + t.cross(level.offset[i]);
-            x[i].1 += t;
+            let (u, t) = level.diag_inv[i].apply(w.b[i].0 - w.t[i].0, w.b[i].1 - w.t[i].1);
+            w.x[i].0 += u * OMEGA;
+            w.x[i].1 += t * OMEGA;
         }
-        springs.times(&x, &mut kx);
-        for i in 0..n {
-            let (u, t) = level.diag_inv[i].apply(b[i].0 - kx[i].0, b[i].1 - kx[i].1);
-            x[i].0 += u * OMEGA;
-            x[i].1 += t * OMEGA;
-        }
-        x
     }
 
-    fn cycle(&self, l: usize, b: &[(DVec3, DVec3)]) -> Vec<(DVec3, DVec3)> {
+    /// The coarsest level: `x = K⁻¹·b` densely, or two Gauss-Seidel sweeps.
+    fn bottom(&self, b: &[Dof], x: &mut [Dof]) {
+        let level = self.levels.last().expect("one level");
+        match &self.coarse {
+            Some(dense) => {
+                x.copy_from_slice(b);
+                dense.solve(x);
+            }
+            None => {
+                x.fill(ZERO);
+                level.sweep(x, b, true);
+                level.sweep(x, b, false);
+            }
+        }
+    }
+
+    /// Level `l`'s cycle: `work[0].x ≈ K_l⁻¹·work[0].b`, deeper levels in `work[1..]`.
+    fn cycle(&self, l: usize, work: &mut [LevelWork]) {
         let level = &self.levels[l];
-        let zero = (DVec3::ZERO, DVec3::ZERO);
+        let n = level.len();
+        let (here, deeper) = work.split_at_mut(1);
+        let w = &mut here[0];
         if l + 1 == self.levels.len() {
-            let mut x = b.to_vec();
-            match &self.coarse {
-                Some(dense) => dense.solve(&mut x),
-                None => {
-                    x.iter_mut().for_each(|v| *v = zero);
-                    level.sweep(&mut x, b, true);
-                    level.sweep(&mut x, b, false);
-                }
-            }
-            return x;
+            self.bottom(&w.b[..n], &mut w.x[..n]);
+            return;
         }
-        if l == 0
-            && JACOBI
-            && let Some(springs) = &level.springs
-        {
-            return self.fine_cycle(level, springs, b);
-        }
-        let mut x = vec![zero; level.len()];
+        let x = &mut w.x[..n];
+        let b = &w.b[..n];
+        x.fill(ZERO);
         for _ in 0..SWEEPS {
-            level.sweep(&mut x, b, true);
+            level.sweep(x, b, true);
         }
-        let coarse_n = self.levels[l + 1].len();
         for _ in 0..CYCLES {
-            let mut bc = vec![zero; coarse_n];
-            for i in 0..level.len() {
-                let (ru, rt) = level.off_residual(i, &x, b[i]);
-                let (du, dt) = level.diag[i].apply(x[i].0, x[i].1);
-                let (fu, ft) = (ru - du, rt - dt);
-                let g = &mut bc[level.parent[i] as usize];
-                g.0 += fu;
-                g.1 += ft + level.offset[i].cross(fu);
-            }
-            let xc = self.cycle(l + 1, &bc);
-            for i in 0..level.len() {
-                let (u, t) = xc[level.parent[i] as usize];
-                x[i].0 += u + t.cross(level.offset[i]);
-                x[i].1 += t;
-            }
+            level.restrict_residual(x, b, &mut deeper[0].b[..self.levels[l + 1].len()]);
+            self.cycle(l + 1, deeper);
+            level.prolong_add(&deeper[0].x, x);
         }
         for _ in 0..SWEEPS {
-            level.sweep(&mut x, b, false);
+            level.sweep(x, b, false);
         }
-        x
     }
 }
