@@ -50,6 +50,16 @@ impl Block6 {
         }
     }
 
+    /// `self · s`.
+    pub fn scale(&self, s: f64) -> Block6 {
+        Block6 {
+            uu: self.uu * s,
+            ut: self.ut * s,
+            tu: self.tu * s,
+            tt: self.tt * s,
+        }
+    }
+
     pub fn add(&mut self, o: &Block6) {
         self.uu += o.uu;
         self.ut += o.ut;
@@ -82,14 +92,40 @@ impl Block6 {
         }
     }
 
-    /// `P(r)`: a coarse node's rigid motion `(U, Θ)` seen at a point `r` from its
-    /// reference point, `(U + Θ × r, Θ)`.
-    pub fn rigid(r: DVec3) -> Block6 {
+    /// The rigid motion of a group seen at a node offset `r` from the group's point,
+    /// `(U, Θ) ↦ (U + Θ × r, Θ)`, given `skew(r)`: `[[I, −skew(r)], [0, I]]`.
+    pub fn rigid_of_skew(s: &DMat3) -> Block6 {
         Block6 {
             uu: DMat3::IDENTITY,
-            ut: -skew(r),
+            ut: -*s,
             tu: DMat3::ZERO,
             tt: DMat3::IDENTITY,
+        }
+    }
+
+    /// `self · rigid_of_skew(s)`, in two 3×3 products instead of eight.
+    pub fn times_rigid(&self, s: &DMat3) -> Block6 {
+        Block6 {
+            uu: self.uu,
+            ut: self.ut - self.uu * *s,
+            tu: self.tu,
+            tt: self.tt - self.tu * *s,
+        }
+    }
+
+    /// `selfᵀ · o`.
+    pub fn transpose_mul(&self, o: &Block6) -> Block6 {
+        let (a, b, c, d) = (
+            self.uu.transpose(),
+            self.tu.transpose(),
+            self.ut.transpose(),
+            self.tt.transpose(),
+        );
+        Block6 {
+            uu: a * o.uu + b * o.tu,
+            ut: a * o.ut + b * o.tt,
+            tu: c * o.uu + d * o.tu,
+            tt: c * o.ut + d * o.tt,
         }
     }
 

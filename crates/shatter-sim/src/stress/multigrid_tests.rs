@@ -6,6 +6,7 @@ use glam::DVec3;
 use super::block::Block6;
 use super::local::LocalSprings;
 use super::multigrid::Multigrid;
+use super::multigrid::real::F64;
 use super::solver::springs;
 use super::spring::Spring;
 use super::*;
@@ -75,11 +76,11 @@ fn setup(graph: &BondGraph) -> Setup {
 }
 
 /// The hierarchy of the setup's free nodes.
-fn multigrid(s: &Setup) -> Multigrid {
+fn multigrid(s: &Setup) -> Multigrid<F64> {
     let all: Vec<u32> = (0..s.springs.len() as u32).collect();
     let springs = LocalSprings::new(&s.springs, &all, &s.local, s.free.len());
     let pos: Vec<DVec3> = s.free.iter().map(|&v| s.pos[v as usize]).collect();
-    Multigrid::new(&springs, &pos)
+    Multigrid::<F64>::new(&springs, &pos)
 }
 
 /// `K·x` on the free nodes, straight from the springs (anchored nodes at rest).

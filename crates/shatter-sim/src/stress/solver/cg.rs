@@ -7,6 +7,7 @@ use super::islands::{Hierarchy, IslandState, Part};
 use super::{Outcome, StressSolver};
 use crate::stress::local::{Dof, LocalSprings, ZERO};
 use crate::stress::multigrid::Work;
+use crate::stress::multigrid::real::F32;
 use crate::stress::spring::{invert, outer};
 
 /// The solver's reusable vectors.
@@ -25,7 +26,7 @@ pub(super) struct Scratch {
 #[derive(Debug, Clone, Default)]
 struct PreWork {
     /// The multigrid's.
-    work: Work,
+    work: Work<F32>,
     /// Residual and correction in a kept hierarchy's order.
     hr: Vec<Dof>,
     hz: Vec<Dof>,
