@@ -9,6 +9,12 @@ use crate::object::BondModel;
 /// as without a budget; a 20,000-bond wall (88 iterations cold) takes two steps.
 pub const DEFAULT_STRESS_BUDGET: usize = 64;
 
+/// [`WorldSettings::stress_spring_budget`] by default: springs the stress solver visits per
+/// object per step, about a millisecond of one core. A 20,000-bond object's solve then
+/// advances one conjugate-gradient iteration per step; objects under 2,000 bonds still
+/// do a dozen or more.
+pub const DEFAULT_STRESS_SPRING_BUDGET: usize = 24_000;
+
 /// Global settings of a simulation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WorldSettings {
@@ -40,6 +46,12 @@ pub struct WorldSettings {
     /// are judged when it has converged (see
     /// [`SolverSettings::budget`](crate::stress::SolverSettings::budget)).
     pub stress_budget: Option<usize>,
+    /// Most springs the stress solver visits per object per step (`None`: no limit):
+    /// each iteration, and each start of a solve, visits all of an object's intact bonds,
+    /// so this bounds the time a large object's solve takes per step where
+    /// `stress_budget` bounds only its iterations (see
+    /// [`SolverSettings::spring_budget`](crate::stress::SolverSettings::spring_budget)).
+    pub stress_spring_budget: Option<usize>,
 }
 
 impl Default for WorldSettings {
@@ -56,6 +68,7 @@ impl Default for WorldSettings {
             solver_iterations: 4,
             stress: true,
             stress_budget: Some(DEFAULT_STRESS_BUDGET),
+            stress_spring_budget: Some(DEFAULT_STRESS_SPRING_BUDGET),
         }
     }
 }

@@ -50,11 +50,12 @@ impl<R: Real> Block<R> {
 /// One level as the preconditioner reads it.
 #[derive(Debug, Clone)]
 pub(super) struct Level<R: Real> {
-    /// The diagonal, and the rows without it (empty on the finest level, which is only
-    /// smoothed by its inverse diagonal).
-    diag: Vec<Block<R>>,
+    /// The inverse diagonal, and the rows without the diagonal (empty on the finest
+    /// level, which is only smoothed by its inverse diagonal).
     diag_inv: Vec<Block<R>>,
     row_start: Vec<u32>,
+    /// Per row, where its columns above the diagonal start.
+    upper: Vec<u32>,
     cols: Vec<u32>,
     offd: Vec<Block<R>>,
     /// `P` by rows (empty on the last level).
@@ -69,16 +70,22 @@ impl<R: Real> Level<R> {
         let blocks = |v: &[Block6]| v.iter().map(Block::of).collect::<Vec<_>>();
         let fine = l == 0;
         Level {
-            diag: if fine {
-                Vec::new()
-            } else {
-                blocks(&setup.diag)
-            },
             diag_inv: blocks(&setup.diag_inv),
             row_start: if fine {
                 Vec::new()
             } else {
                 setup.row_start.clone()
+            },
+            upper: if fine {
+                Vec::new()
+            } else {
+                (0..setup.len())
+                    .map(|i| {
+                        let row = setup.row(i);
+                        let above = setup.cols[row.clone()].partition_point(|&j| (j as usize) < i);
+                        (row.start + above) as u32
+                    })
+                    .collect()
             },
             cols: if fine { Vec::new() } else { setup.cols.clone() },
             offd: if fine {
@@ -116,12 +123,31 @@ impl<R: Real> Level<R> {
         (ru, rt)
     }
 
-    /// `(b − K·x)_i` (not on the finest level).
+    /// A forward Gauss-Seidel sweep from `x = 0`: row `i` meets only the `x_j`, `j < i`,
+    /// already swept, so only the blocks below the diagonal are read.
+    fn sweep_from_zero(&self, x: &mut [Pair<R>], b: &[Pair<R>]) {
+        for i in 0..self.len() {
+            let (mut ru, mut rt) = b[i];
+            for k in self.row_start[i] as usize..self.upper[i] as usize {
+                let (fu, ft) = self.offd[k].apply(x[self.cols[k] as usize]);
+                ru -= fu;
+                rt -= ft;
+            }
+            x[i] = self.diag_inv[i].apply((ru, rt));
+        }
+    }
+
+    /// `(b − K·x)_i` right after [`Level::sweep_from_zero`]: row `i`'s diagonal and lower
+    /// part cancel `b_i` by construction, which leaves `−Σ_{j>i} K_ij·x_j`.
     #[inline]
-    fn residual(&self, i: usize, x: &[Pair<R>], b: Pair<R>) -> Pair<R> {
-        let (ru, rt) = self.off_residual(i, x, b);
-        let (du, dt) = self.diag[i].apply(x[i]);
-        (ru - du, rt - dt)
+    fn residual_after_sweep(&self, i: usize, x: &[Pair<R>]) -> Pair<R> {
+        let (mut ru, mut rt) = (R::ZERO, R::ZERO);
+        for k in self.upper[i] as usize..self.row_start[i + 1] as usize {
+            let (fu, ft) = self.offd[k].apply(x[self.cols[k] as usize]);
+            ru -= fu;
+            rt -= ft;
+        }
+        (ru, rt)
     }
 
     /// One block Gauss-Seidel sweep, forward or backward.
@@ -255,6 +281,7 @@ impl<R: Real> Cycle<R> {
 
     /// Level `l`'s V-cycle (`l ≥ 1`): `work[0].x ≈ K_l⁻¹·work[0].b`, deeper levels in
     /// `work[1..]`; forward Gauss-Seidel before the coarse correction, backward after.
+    /// The forward sweep and the residual after it read each block once between them.
     fn cycle(&self, l: usize, work: &mut [LevelWork<R>], dense: &mut Vec<Dof>) {
         let level = &self.levels[l];
         let (here, deeper) = work.split_at_mut(1);
@@ -263,10 +290,9 @@ impl<R: Real> Cycle<R> {
             self.bottom(&w.b, &mut w.x, dense);
             return;
         }
-        w.x.fill((R::ZERO, R::ZERO));
-        level.sweep(&mut w.x, &w.b, true);
+        level.sweep_from_zero(&mut w.x, &w.b);
         for i in 0..level.len() {
-            w.t[i] = level.residual(i, &w.x, w.b[i]);
+            w.t[i] = level.residual_after_sweep(i, &w.x);
         }
         level.restrict(&w.t, &mut deeper[0].b);
         self.cycle(l + 1, deeper, dense);

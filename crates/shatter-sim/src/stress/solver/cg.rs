@@ -41,14 +41,15 @@ struct Pre<'a> {
 
 impl StressSolver {
     /// Solves island `i`'s gravity case, then (once it has converged) the case of the
-    /// dynamic `forces` (its free nodes'), with at most `cap` iterations in all; each case
-    /// resumes its unfinished conjugate gradients or starts from its last solution. Stores
-    /// the bond stresses once both have converged.
+    /// dynamic `forces` (its free nodes'), with at most `cap` iterations and `units` starts
+    /// and iterations in all; each case resumes its unfinished conjugate gradients or
+    /// starts from its last solution. Stores the bond stresses once both have converged.
     pub(super) fn solve_island(
         &mut self,
         i: usize,
         forces: &[(u32, DVec3)],
         cap: usize,
+        units: usize,
     ) -> Outcome {
         let mut island = std::mem::take(&mut self.islands[i]);
         let mut scratch = std::mem::take(&mut self.scratch);
@@ -57,6 +58,7 @@ impl StressSolver {
         let tolerance = self.settings.tolerance;
         let mut outcome = Outcome {
             iterations: 0,
+            units: 0,
             residual: 0.0,
             converged: false,
         };
@@ -92,12 +94,15 @@ impl StressSolver {
                 &pre,
                 gravity,
                 tolerance * norm_g,
-                cap,
+                (cap, units),
                 &mut scratch,
                 weight,
             );
             outcome.iterations += run.iterations;
-            outcome.residual = relative(run.residual, norm_g);
+            outcome.units += run.units;
+            if run.units > 0 {
+                outcome.residual = relative(run.residual, norm_g);
+            }
         }
         let loaded = !forces.is_empty();
         if !gravity.converged {
@@ -134,12 +139,18 @@ impl StressSolver {
                 &pre,
                 dynamic,
                 tolerance * norm_total,
-                cap - outcome.iterations.min(cap),
+                (
+                    cap - outcome.iterations.min(cap),
+                    units - outcome.units.min(units),
+                ),
                 &mut scratch,
                 weight,
             );
             outcome.iterations += run.iterations;
-            outcome.residual = outcome.residual.max(relative(run.residual, norm_total));
+            outcome.units += run.units;
+            if run.units > 0 {
+                outcome.residual = outcome.residual.max(relative(run.residual, norm_total));
+            }
         }
         outcome.converged = gravity.converged && dynamic.converged;
         if outcome.converged {
@@ -201,19 +212,22 @@ impl StressSolver {
 /// What [`run`] did.
 struct Run {
     iterations: usize,
+    /// Its start (if it started) and iterations.
+    units: usize,
     /// Absolute residual left.
     residual: f64,
 }
 
 /// Preconditioned conjugate gradients on `K·x = f` (`f` in `scratch.f`) for one case of
-/// an island, at most `cap` iterations, to `|f − K·x| ≤ target`: resumed when the case
-/// was stopped by a limit with the same loads, else started from its last solution.
+/// an island, to `|f − K·x| ≤ target`, with at most `cap` iterations and `units` starts
+/// and iterations: resumed when the case was stopped by a limit with the same loads, else
+/// started from its last solution.
 fn run(
     springs: &LocalSprings,
     pre: &Pre<'_>,
     part: &mut Part,
     target: f64,
-    cap: usize,
+    (cap, mut units): (usize, usize),
     scratch: &mut Scratch,
     weight: f64,
 ) -> Run {
@@ -221,6 +235,16 @@ fn run(
     for v in [&mut part.r, &mut part.p, &mut scratch.q] {
         v.resize(n + 1, ZERO);
     }
+    let started = part.resume.is_none();
+    if started && units == 0 {
+        return Run {
+            iterations: 0,
+            units: 0,
+            residual: f64::INFINITY,
+        };
+    }
+    units -= usize::from(started);
+    let cap = cap.min(units);
     let (mut residual, mut rz) = match part.resume.take() {
         // r and p are where the last run left them.
         Some(rz) => (norm(&part.r[..n], weight), rz),
@@ -285,6 +309,7 @@ fn run(
     part.resume = if part.converged { None } else { stopped };
     Run {
         iterations,
+        units: iterations + usize::from(started),
         residual,
     }
 }

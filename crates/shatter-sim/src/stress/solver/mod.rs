@@ -55,6 +55,16 @@ pub struct SolverSettings {
     /// contact that presses every step loads its bonds once. No bond breaks on an
     /// unfinished solve.
     pub budget: Option<usize>,
+    /// Most springs visited per [`StressSolver::solve`], summed over the islands (`None`:
+    /// no limit): each conjugate-gradient iteration of an island, and each start of a run
+    /// (its first residual and preconditioning), visits the island's springs once, and an
+    /// iteration's time grows with them. So this, unlike `budget`, bounds a solve's time
+    /// for objects of every size: at the World's default
+    /// ([`DEFAULT_STRESS_SPRING_BUDGET`](crate::DEFAULT_STRESS_SPRING_BUDGET)) a
+    /// 20,000-bond island advances one iteration per solve and a 1,000-bond one 24. A
+    /// solve always does at least one start or iteration; what is left goes on at the
+    /// next solve, as with `budget`.
+    pub spring_budget: Option<usize>,
     /// Shear over normal stiffness, `G/E`.
     pub shear_ratio: f64,
     /// How the conjugate gradients are preconditioned.
@@ -114,6 +124,7 @@ impl Default for SolverSettings {
             tolerance: 1e-5,
             max_iterations: 1000,
             budget: None,
+            spring_budget: None,
             shear_ratio: 0.4,
             preconditioner: Preconditioner::Multigrid,
         }
@@ -138,6 +149,8 @@ pub struct SolveReport {
     /// Multigrid hierarchies built (after the bonds changed); an island that only lost
     /// bonds, or a few nodes, keeps its hierarchy.
     pub hierarchies_built: usize,
+    /// Springs visited by starts and iterations (see [`SolverSettings::spring_budget`]).
+    pub springs: usize,
 }
 
 /// The stress solver of one bond graph; keeps its solution between solves.
@@ -195,6 +208,8 @@ pub struct StressSolver {
 /// What [`StressSolver::solve_island`] did.
 pub(super) struct Outcome {
     pub iterations: usize,
+    /// Starts and iterations.
+    pub units: usize,
     /// Relative residual.
     pub residual: f64,
     pub converged: bool,
@@ -238,6 +253,17 @@ impl StressSolver {
     /// The settings.
     pub fn settings(&self) -> &SolverSettings {
         &self.settings
+    }
+
+    /// Builds the anchored islands of the intact bonds (`broken[b]`: bond `b` is gone) and
+    /// their preconditioners, which the first [`StressSolver::solve`] with this mask would
+    /// otherwise build: an object's creation can pay for it once, so that no step does.
+    /// Returns the multigrid hierarchies built.
+    pub fn prepare(&mut self, graph: &BondGraph, broken: &[bool]) -> usize {
+        if self.topology.as_deref() == Some(broken) {
+            return 0;
+        }
+        self.rebuild(graph, broken)
     }
 
     /// Solves the anchored islands of the intact bonds (`broken[b]`: bond `b` is gone)
@@ -284,6 +310,7 @@ impl StressSolver {
             ..SolveReport::default()
         };
         let mut budget = self.settings.budget.unwrap_or(usize::MAX);
+        let mut springs_left = self.settings.spring_budget.unwrap_or(usize::MAX);
         self.last_solved.clear();
         for (i, fresh) in by_island.into_iter().enumerate() {
             let island = &mut self.islands[i];
@@ -298,7 +325,14 @@ impl StressSolver {
                 island.dynamic.converged = false;
                 island.dynamic.resume = None;
             }
-            if budget == 0 {
+            // Starts and iterations this island may have: what is left of the springs, at
+            // least one for the first island that works in this solve.
+            let bonds = island.bonds.len().max(1);
+            let units = match springs_left {
+                usize::MAX => usize::MAX,
+                left => (left / bonds).max(usize::from(report.springs == 0)),
+            };
+            if budget == 0 || units == 0 {
                 // Not solved this time: still owed, with its loads kept for it.
                 island.settled = false;
                 report.islands_deferred += 1;
@@ -307,8 +341,11 @@ impl StressSolver {
             }
             let loads = std::mem::take(&mut island.carry);
             let cap = self.settings.max_iterations.min(budget);
-            let outcome = self.solve_island(i, &loads, cap);
+            let outcome = self.solve_island(i, &loads, cap, units);
             budget = budget.saturating_sub(outcome.iterations);
+            let visited = outcome.units.saturating_mul(bonds);
+            springs_left = springs_left.saturating_sub(visited);
+            report.springs += visited;
             let island = &mut self.islands[i];
             island.had_forces = !loads.is_empty();
             island.converged = outcome.converged;
