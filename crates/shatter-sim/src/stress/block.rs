@@ -67,7 +67,7 @@ impl Block6 {
         self.tt += o.tt;
     }
 
-    fn neg(&self) -> Block6 {
+    pub fn neg(&self) -> Block6 {
         Block6 {
             uu: -self.uu,
             ut: -self.ut,

@@ -20,7 +20,7 @@ pub(super) struct Block<R: Real> {
 }
 
 impl<R: Real> Block<R> {
-    fn of(b: &Block6) -> Block<R> {
+    pub fn of(b: &Block6) -> Block<R> {
         Block {
             uu: R::matrix(b.uu),
             ut: R::matrix(b.ut),
@@ -36,15 +36,6 @@ impl<R: Real> Block<R> {
             R::mv(&self.tu, u) + R::mv(&self.tt, t),
         )
     }
-
-    /// `selfᵀ·(u, θ)`.
-    #[inline]
-    fn apply_t(&self, (u, t): Pair<R>) -> Pair<R> {
-        (
-            R::mtv(&self.uu, u) + R::mtv(&self.tu, t),
-            R::mtv(&self.ut, u) + R::mtv(&self.tt, t),
-        )
-    }
 }
 
 /// One level as the preconditioner reads it.
@@ -58,10 +49,11 @@ pub(super) struct Level<R: Real> {
     upper: Vec<u32>,
     cols: Vec<u32>,
     offd: Vec<Block<R>>,
-    /// `P` by rows (empty on the last level).
+    /// `P` by rows (empty on the last level), and its blocks transposed for `Pᵀ`.
     p_start: Vec<u32>,
     p_cols: Vec<u32>,
     p: Vec<Block<R>>,
+    pt: Vec<Block<R>>,
 }
 
 impl<R: Real> Level<R> {
@@ -96,11 +88,27 @@ impl<R: Real> Level<R> {
             p_start: setup.p_start.clone(),
             p_cols: setup.p_cols.clone(),
             p: blocks(&setup.p_blocks),
+            pt: setup
+                .p_blocks
+                .iter()
+                .map(|b| Block::of(&b.transpose()))
+                .collect(),
         }
     }
 
     pub fn len(&self) -> usize {
         self.diag_inv.len()
+    }
+
+    pub fn set_diag_inv(&mut self, i: usize, b: Block<R>) {
+        self.diag_inv[i] = b;
+    }
+
+    /// Sets the off-diagonal entry `k` (nothing on the finest level, which keeps none).
+    pub fn set_offd(&mut self, k: usize, b: Block<R>) {
+        if let Some(o) = self.offd.get_mut(k) {
+            *o = b;
+        }
     }
 
     fn row(&self, i: usize) -> std::ops::Range<usize> {
@@ -164,7 +172,7 @@ impl<R: Real> Level<R> {
         out.fill((R::ZERO, R::ZERO));
         for (i, &fi) in f.iter().enumerate().take(self.len()) {
             for k in self.p_row(i) {
-                let (u, t) = self.p[k].apply_t(fi);
+                let (u, t) = self.pt[k].apply(fi);
                 let o = &mut out[self.p_cols[k] as usize];
                 o.0 += u;
                 o.1 += t;

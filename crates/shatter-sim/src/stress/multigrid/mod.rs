@@ -30,6 +30,7 @@
 mod cycle;
 pub(super) mod real;
 mod setup;
+mod update;
 
 use glam::DVec3;
 
@@ -42,8 +43,8 @@ use real::{F32, Real};
 #[derive(Debug, Clone)]
 pub(super) struct Multigrid<R: Real = F32> {
     cycle: Cycle<R>,
-    /// The levels as built, in `f64` (for tests of their algebra).
-    #[cfg(test)]
+    /// The levels in `f64`, as built and updated since (see `update.rs`); the finest
+    /// level without its blocks off the diagonal, outside tests.
     setup: Vec<setup::Level>,
 }
 
@@ -51,7 +52,7 @@ impl<R: Real> Multigrid<R> {
     /// The hierarchy of an island's springs (free nodes `0..n`, see [`LocalSprings`])
     /// with the free nodes' positions `pos`.
     pub fn new(springs: &LocalSprings, pos: &[DVec3]) -> Multigrid<R> {
-        let (levels, coarse) = setup::build(springs, pos);
+        let (mut levels, coarse) = setup::build(springs, pos);
         let cycle = Cycle {
             levels: levels
                 .iter()
@@ -60,9 +61,15 @@ impl<R: Real> Multigrid<R> {
                 .collect(),
             coarse,
         };
+        if !cfg!(test) {
+            // Neither the cycle nor an update reads them.
+            let fine = &mut levels[0];
+            fine.offd = Vec::new();
+            fine.cols = Vec::new();
+            fine.row_start = Vec::new();
+        }
         Multigrid {
             cycle,
-            #[cfg(test)]
             setup: levels,
         }
     }

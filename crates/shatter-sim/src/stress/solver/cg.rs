@@ -62,17 +62,6 @@ impl StressSolver {
             residual: 0.0,
             converged: false,
         };
-        // Gravity: m·g at every free node.
-        let f = &mut scratch.f;
-        f.clear();
-        f.extend(
-            island
-                .free
-                .iter()
-                .map(|&v| (self.mass[v as usize] * self.gravity, DVec3::ZERO)),
-        );
-        f.push(ZERO);
-        let norm_g = norm(&f[..n], weight);
         let IslandState {
             free,
             springs,
@@ -81,19 +70,42 @@ impl StressSolver {
             multigrid,
             map,
             jacobi,
+            load_scale,
             ..
         } = &mut island;
+        // Both cases converge within the tolerance of all the island's loads.
+        let loaded = !forces.is_empty();
+        let total = match (loaded, *load_scale) {
+            (false, _) => 0.0,
+            (true, Some(t)) => t,
+            (true, None) => {
+                let t = self.total_loads(free, forces, &mut scratch, weight);
+                *load_scale = Some(t);
+                t
+            }
+        };
         let pre = Pre {
             multigrid: multigrid.as_deref(),
             map: map.as_deref(),
             jacobi,
         };
+        if !loaded && gravity.converged && gravity.residual > tolerance * gravity.scale {
+            // It converged within the tolerance of dynamic forces that are gone: gravity's
+            // own is tighter.
+            gravity.converged = false;
+        }
         if !gravity.converged {
+            if gravity.resume.is_none() {
+                // A start: m·g at every free node.
+                self.gravity_loads(free, &mut scratch.f);
+                gravity.scale = norm(&scratch.f[..n], weight);
+            }
+            let scale = gravity.scale.max(total);
             let run = run(
                 springs,
                 &pre,
                 gravity,
-                tolerance * norm_g,
+                tolerance * scale,
                 (cap, units),
                 &mut scratch,
                 weight,
@@ -101,10 +113,9 @@ impl StressSolver {
             outcome.iterations += run.iterations;
             outcome.units += run.units;
             if run.units > 0 {
-                outcome.residual = relative(run.residual, norm_g);
+                outcome.residual = relative(run.residual, scale);
             }
         }
-        let loaded = !forces.is_empty();
         if !gravity.converged {
             // Unfinished: the dynamic case waits.
         } else if !loaded {
@@ -116,29 +127,16 @@ impl StressSolver {
             // Dynamic forces, balanced by the island's inertia (inertia relief): each free
             // node also takes `−m·a` for the island's mean acceleration `a = ΣF / Σm`, so
             // a short hit stresses the material around it rather than being carried to the
-            // anchors. Converged when the residual is within the tolerance of all the
-            // island's loads, gravity's and these.
-            std::mem::swap(&mut scratch.f, &mut scratch.g);
-            let f = &mut scratch.f;
-            f.clear();
-            f.resize(n + 1, ZERO);
-            for &(v, force) in forces {
-                f[self.local[v as usize] as usize].0 += force;
+            // anchors.
+            if dynamic.resume.is_none() {
+                // A start: the loads in `scratch.f`.
+                self.total_loads(free, forces, &mut scratch, weight);
             }
-            self.relieve(free, forces, f);
-            let norm_total = scratch
-                .g
-                .iter()
-                .zip(scratch.f.iter())
-                .take(n)
-                .map(|(a, b)| (a.0 + b.0).length_squared() + (a.1 + b.1).length_squared() * weight)
-                .sum::<f64>()
-                .sqrt();
             let run = run(
                 springs,
                 &pre,
                 dynamic,
-                tolerance * norm_total,
+                tolerance * total,
                 (
                     cap - outcome.iterations.min(cap),
                     units - outcome.units.min(units),
@@ -149,7 +147,7 @@ impl StressSolver {
             outcome.iterations += run.iterations;
             outcome.units += run.units;
             if run.units > 0 {
-                outcome.residual = outcome.residual.max(relative(run.residual, norm_total));
+                outcome.residual = outcome.residual.max(relative(run.residual, total));
             }
         }
         outcome.converged = gravity.converged && dynamic.converged;
@@ -159,6 +157,44 @@ impl StressSolver {
         self.islands[i] = island;
         self.scratch = scratch;
         outcome
+    }
+
+    /// The dynamic `forces`, relieved (see [`StressSolver::relieve`]), into `scratch.f`
+    /// (gravity's into `scratch.g`); returns the norm of their sum.
+    fn total_loads(
+        &self,
+        free: &[u32],
+        forces: &[(u32, DVec3)],
+        scratch: &mut Scratch,
+        weight: f64,
+    ) -> f64 {
+        let n = free.len();
+        self.gravity_loads(free, &mut scratch.g);
+        let f = &mut scratch.f;
+        f.clear();
+        f.resize(n + 1, ZERO);
+        for &(v, force) in forces {
+            f[self.local[v as usize] as usize].0 += force;
+        }
+        self.relieve(free, forces, f);
+        scratch
+            .g
+            .iter()
+            .zip(scratch.f.iter())
+            .take(n)
+            .map(|(a, b)| (a.0 + b.0).length_squared() + (a.1 + b.1).length_squared() * weight)
+            .sum::<f64>()
+            .sqrt()
+    }
+
+    /// Gravity's loads on the free nodes `free`: `m·g`, then the anchored slot.
+    fn gravity_loads(&self, free: &[u32], f: &mut Vec<Dof>) {
+        f.clear();
+        f.extend(
+            free.iter()
+                .map(|&v| (self.mass[v as usize] * self.gravity, DVec3::ZERO)),
+        );
+        f.push(ZERO);
     }
 
     /// The stresses of the island's bonds, from the sum of its two cases.
@@ -218,10 +254,10 @@ struct Run {
     residual: f64,
 }
 
-/// Preconditioned conjugate gradients on `K·x = f` (`f` in `scratch.f`) for one case of
-/// an island, to `|f − K·x| ≤ target`, with at most `cap` iterations and `units` starts
+/// Preconditioned conjugate gradients on `K·x = f` for one case of an island, to
+/// `|f − K·x| ≤ target`, with at most `cap` iterations and `units` starts
 /// and iterations: resumed when the case was stopped by a limit with the same loads, else
-/// started from its last solution.
+/// started from its last solution (`f` in `scratch.f`, read only then).
 fn run(
     springs: &LocalSprings,
     pre: &Pre<'_>,
@@ -247,7 +283,7 @@ fn run(
     let cap = cap.min(units);
     let (mut residual, mut rz) = match part.resume.take() {
         // r and p are where the last run left them.
-        Some(rz) => (norm(&part.r[..n], weight), rz),
+        Some(rz) => (part.residual, rz),
         None => {
             // r = f − K·x.
             springs.times(&part.x, &mut scratch.q);
@@ -279,6 +315,7 @@ fn run(
                 break;
             }
             let alpha = rz / pq;
+            let mut squared = 0.0;
             for ((x, r), (p, q)) in part
                 .x
                 .iter_mut()
@@ -290,8 +327,9 @@ fn run(
                 x.1 += alpha * p.1;
                 r.0 -= alpha * q.0;
                 r.1 -= alpha * q.1;
+                squared += r.0.length_squared() + r.1.length_squared() * weight;
             }
-            residual = norm(&part.r[..n], weight);
+            residual = squared.sqrt();
             if residual <= target {
                 break;
             }
@@ -307,6 +345,7 @@ fn run(
     }
     part.converged = residual <= target;
     part.resume = if part.converged { None } else { stopped };
+    part.residual = residual;
     Run {
         iterations,
         units: iterations + usize::from(started),

@@ -200,6 +200,9 @@ pub struct StressSolver {
     /// Mean bond length: torque residuals are divided by it to compare with forces.
     length_scale: f64,
     scratch: Scratch,
+    /// Per node, the search that last reached it (see `islands.rs`, `detour`).
+    seen: Vec<u32>,
+    stamp: u32,
     stress: Vec<BondStress>,
     /// Islands solved by the last solve.
     last_solved: Vec<u32>,
@@ -245,6 +248,8 @@ impl StressSolver {
             gravity: DVec3::ZERO,
             length_scale,
             scratch: Scratch::default(),
+            seen: vec![0; n],
+            stamp: 0,
             stress: vec![BondStress::default(); graph.bonds().len()],
             last_solved: Vec::new(),
         }
@@ -263,7 +268,7 @@ impl StressSolver {
         if self.topology.as_deref() == Some(broken) {
             return 0;
         }
-        self.rebuild(graph, broken)
+        self.update_topology(graph, broken)
     }
 
     /// Solves the anchored islands of the intact bonds (`broken[b]`: bond `b` is gone)
@@ -282,7 +287,7 @@ impl StressSolver {
             .as_deref()
             .is_none_or(|t| t.len() != broken.len() || t != broken);
         let built = if changed {
-            self.rebuild(graph, broken)
+            self.update_topology(graph, broken)
         } else {
             0
         };
@@ -292,6 +297,7 @@ impl StressSolver {
                 i.settled = false;
                 i.gravity.converged = false;
                 i.gravity.resume = None;
+                i.load_scale = None;
             });
         }
         // This solve's forces, per island.
@@ -324,6 +330,7 @@ impl StressSolver {
             if merge_strongest(&mut island.carry, fresh) {
                 island.dynamic.converged = false;
                 island.dynamic.resume = None;
+                island.load_scale = None;
             }
             // Starts and iterations this island may have: what is left of the springs, at
             // least one for the first island that works in this solve.
@@ -349,10 +356,10 @@ impl StressSolver {
             let island = &mut self.islands[i];
             island.had_forces = !loads.is_empty();
             island.converged = outcome.converged;
-            island.settled = outcome.converged && loads.is_empty();
             if !outcome.converged {
                 island.carry = loads;
             }
+            island.settled = outcome.converged && !island.had_forces;
             report.islands_solved += 1;
             report.iterations += outcome.iterations;
             report.residual = report.residual.max(outcome.residual);
@@ -467,7 +474,7 @@ pub(super) fn springs(graph: &BondGraph, settings: &SolverSettings) -> Vec<Sprin
 /// add up) into `carry`, the per-node loads of an unfinished solve (sorted by node):
 /// each node keeps the stronger of its carried and its fresh force. Returns whether
 /// `carry` changed.
-fn merge_strongest(carry: &mut Vec<(u32, DVec3)>, mut fresh: Vec<(u32, DVec3)>) -> bool {
+pub(super) fn merge_strongest(carry: &mut Vec<(u32, DVec3)>, mut fresh: Vec<(u32, DVec3)>) -> bool {
     if fresh.is_empty() {
         return false;
     }
