@@ -36,6 +36,8 @@ mod local;
 mod multigrid;
 #[cfg(test)]
 mod multigrid_tests;
+#[cfg(test)]
+mod slicing_tests;
 mod solver;
 mod spring;
 #[cfg(test)]

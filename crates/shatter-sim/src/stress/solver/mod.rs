@@ -7,10 +7,11 @@
 //! springs `E·I/L`, `G·J/L` (`I = A²/12`, `J = A²/6`, a square face) on `θ_b − θ_a`.
 //! Anchored nodes do not move. Loads (gravity `m·g` at every node, plus this step's
 //! dynamic forces) are balanced by the bond forces: `K·x = f`, solved per anchored island
-//! with the conjugate-gradient method, preconditioned by an aggregation multigrid (see
-//! `stress/multigrid.rs`; a 3×3 block-Jacobi preconditioner is the alternative),
-//! warm-started from the last solution. This is the minimum-energy (weighted least-squares) way the
-//! loads flow down to the anchors; force and moment balance hold at every node, so a
+//! with the conjugate-gradient method, preconditioned by a smoothed-aggregation multigrid
+//! (see `stress/multigrid/`; a 3×3 block-Jacobi preconditioner is the alternative),
+//! warm-started from the last solution. Gravity and the dynamic forces are solved as two
+//! cases and added (`islands.rs`). This is the minimum-energy (weighted least-squares)
+//! way the loads flow down to the anchors; force and moment balance hold at every node, so a
 //! cantilever's root carries its weight as shear and its moment as tension on top and
 //! compression below. The stiffness scale `E` cancels out of the stresses; only the
 //! ratio `G/E` matters.
@@ -20,7 +21,8 @@
 //! material around it, not the supports; gravity goes to the anchors.
 //!
 //! Islands without an anchor are not solved: they have no static load path and fall
-//! freely. Settled islands (converged, loads and bonds unchanged) are skipped.
+//! freely. Settled islands (converged, loads and bonds unchanged) are skipped; so is
+//! everything once a hit is gone (the island is back at its gravity solution).
 
 use glam::DVec3;
 
