@@ -114,8 +114,14 @@ pub fn run(args: &BenchStressArgs, ctx: &Context) -> Result<BenchStressReport, C
             );
         }
         println!(
-            "  per solve          {:>9.3} ms mean over {:.0} solves, max {:.3} ms",
-            w.per_solve_ms, w.solves, w.max_solve_ms
+            "  per solve          {:>9.3} ms mean over {:.0} solves, max {:.3} ms; CPU {}",
+            w.per_solve_ms,
+            w.solves,
+            w.max_solve_ms,
+            match w.per_solve_cpu_ms {
+                Some(ms) => format!("{ms:.3} ms"),
+                None => "-".to_string(),
+            }
         );
     }
     Ok(report)

@@ -14,6 +14,7 @@ use shatter_sim::stress::{BondGraph, Preconditioner, SolverSettings, StressSolve
 use shatter_sim::testing::box_grid_fracture;
 use shatter_sim::{DEFAULT_STRESS_BUDGET, DEFAULT_STRESS_SPRING_BUDGET};
 
+use crate::bench::scale::thread_cpu_ns;
 use crate::context::Context;
 use crate::error::{LabError, ResultExt};
 
@@ -52,6 +53,9 @@ pub struct Timing {
     pub converged: bool,
     /// Largest relative residual left.
     pub residual: f64,
+    /// Mean CPU milliseconds of the thread per solve (`None` where it cannot be read):
+    /// unlike `ms`, not inflated when other processes share the core.
+    pub cpu_ms: Option<f64>,
 }
 
 /// What the benchmark measured.
@@ -107,6 +111,9 @@ pub struct WorldPass {
     pub per_solve_ms: f64,
     /// Largest milliseconds of one solve.
     pub max_solve_ms: f64,
+    /// Mean CPU milliseconds of the thread per solve over every solve of the four cases
+    /// (`None` where it cannot be read).
+    pub per_solve_cpu_ms: Option<f64>,
     /// Solves in all (mean over the runs).
     pub solves: f64,
 }
@@ -134,6 +141,7 @@ fn timed(
     let sliced = solver.settings().budget.is_some();
     let mut t = Timing::default();
     let mut total = 0.0;
+    let cpu_start = thread_cpu_ns();
     loop {
         let first = t.solves == 0.0;
         let t0 = Instant::now();
@@ -150,6 +158,9 @@ fn timed(
         }
     }
     t.ms = total / t.solves;
+    t.cpu_ms = cpu_start
+        .zip(thread_cpu_ns())
+        .map(|(a, b)| b.saturating_sub(a) as f64 / 1e6 / t.solves);
     t
 }
 
@@ -163,6 +174,11 @@ fn mean(samples: &[Timing]) -> Timing {
         iterations: avg(|t| t.iterations),
         converged: samples.iter().all(|t| t.converged),
         residual: samples.iter().map(|t| t.residual).fold(0.0, f64::max),
+        cpu_ms: samples
+            .iter()
+            .map(|t| t.cpu_ms)
+            .sum::<Option<f64>>()
+            .map(|sum| sum / n),
     }
 }
 
@@ -250,6 +266,11 @@ pub fn run(options: &BenchStressOptions, ctx: &Context) -> Result<BenchStressRep
         after_hit: cases[2],
         bond_broken: cases[3],
         per_solve_ms: total / solves.max(1.0),
+        per_solve_cpu_ms: cases
+            .iter()
+            .map(|t| t.cpu_ms.map(|c| c * t.solves))
+            .sum::<Option<f64>>()
+            .map(|sum| sum / solves.max(1.0)),
         max_solve_ms: cases.iter().map(|t| t.max_ms).fold(0.0, f64::max),
         solves,
     };
@@ -318,6 +339,7 @@ mod tests {
             iterations: ms * 10.0,
             converged,
             residual,
+            cpu_ms: Some(ms),
         };
         let m = mean(&[t(1.0, true, 1e-9), t(3.0, false, 1e-6)]);
         assert_eq!((m.ms, m.iterations, m.solves), (2.0, 20.0, 2.0));

@@ -221,7 +221,7 @@ impl ScaleConfig {
 
 /// CPU time of the calling thread in nanoseconds (Linux: `/proc/thread-self/schedstat`'s
 /// first field), `None` where it cannot be read.
-fn thread_cpu_ns() -> Option<u64> {
+pub(crate) fn thread_cpu_ns() -> Option<u64> {
     let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
     text.split_whitespace().next()?.parse().ok()
 }
