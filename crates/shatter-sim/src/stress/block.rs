@@ -4,7 +4,10 @@
 
 use glam::{DMat3, DVec3};
 
-use crate::stress::spring::{Spring, invert, outer, skew};
+use crate::stress::local::LocalSpring;
+#[cfg(test)]
+use crate::stress::spring::Spring;
+use crate::stress::spring::{invert, outer, skew};
 
 /// A 6×6 block `[[uu, ut], [tu, tt]]` acting on `(u, θ)`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -47,6 +50,16 @@ impl Block6 {
         }
     }
 
+    /// `self · s`.
+    pub fn scale(&self, s: f64) -> Block6 {
+        Block6 {
+            uu: self.uu * s,
+            ut: self.ut * s,
+            tu: self.tu * s,
+            tt: self.tt * s,
+        }
+    }
+
     pub fn add(&mut self, o: &Block6) {
         self.uu += o.uu;
         self.ut += o.ut;
@@ -54,7 +67,7 @@ impl Block6 {
         self.tt += o.tt;
     }
 
-    fn neg(&self) -> Block6 {
+    pub fn neg(&self) -> Block6 {
         Block6 {
             uu: -self.uu,
             ut: -self.ut,
@@ -79,24 +92,56 @@ impl Block6 {
         }
     }
 
-    /// `P(r)`: a coarse node's rigid motion `(U, Θ)` seen at a point `r` from its
-    /// reference point, `(U + Θ × r, Θ)`.
-    pub fn rigid(r: DVec3) -> Block6 {
+    /// The rigid motion of a group seen at a node offset `r` from the group's point,
+    /// `(U, Θ) ↦ (U + Θ × r, Θ)`, given `skew(r)`: `[[I, −skew(r)], [0, I]]`.
+    pub fn rigid_of_skew(s: &DMat3) -> Block6 {
         Block6 {
             uu: DMat3::IDENTITY,
-            ut: -skew(r),
+            ut: -*s,
             tu: DMat3::ZERO,
             tt: DMat3::IDENTITY,
+        }
+    }
+
+    /// `self · rigid_of_skew(s)`, in two 3×3 products instead of eight.
+    pub fn times_rigid(&self, s: &DMat3) -> Block6 {
+        Block6 {
+            uu: self.uu,
+            ut: self.ut - self.uu * *s,
+            tu: self.tu,
+            tt: self.tt - self.tu * *s,
+        }
+    }
+
+    /// `selfᵀ · o`.
+    pub fn transpose_mul(&self, o: &Block6) -> Block6 {
+        let (a, b, c, d) = (
+            self.uu.transpose(),
+            self.tu.transpose(),
+            self.ut.transpose(),
+            self.tt.transpose(),
+        );
+        Block6 {
+            uu: a * o.uu + b * o.tu,
+            ut: a * o.ut + b * o.tt,
+            tu: c * o.uu + d * o.tu,
+            tt: c * o.ut + d * o.tt,
         }
     }
 
     /// The stiffness blocks `(K_aa, K_ab, K_bb)` of one bond's springs (`K_ba = K_abᵀ`):
     /// the relative motion at the face is `δ = J_a·x_a + J_b·x_b` with
     /// `J = ±[I, −skew(r)]`, and the rotations' `θ_b − θ_a`.
+    #[cfg(test)]
     pub fn of_spring(s: &Spring) -> (Block6, Block6, Block6) {
+        Block6::of_local(&LocalSpring::new(s, 0, 1))
+    }
+
+    /// [`Block6::of_spring`] of a spring with local ends.
+    pub fn of_local(s: &LocalSpring) -> (Block6, Block6, Block6) {
         let nn = outer(s.n, s.n);
-        let k = DMat3::from_diagonal(DVec3::splat(s.ks)) + nn * (s.kn - s.ks);
-        let kr = DMat3::from_diagonal(DVec3::splat(s.kb)) + nn * (s.kt - s.kb);
+        let k = DMat3::from_diagonal(DVec3::splat(s.ks)) + nn * s.dn;
+        let kr = DMat3::from_diagonal(DVec3::splat(s.kb)) + nn * s.dt;
         let (sa, sb) = (skew(s.ra), skew(s.rb));
         let block = |si: DMat3, sj: DMat3| Block6 {
             uu: k,

@@ -32,9 +32,12 @@
 mod block;
 mod graph;
 mod limits;
+mod local;
 mod multigrid;
 #[cfg(test)]
 mod multigrid_tests;
+#[cfg(test)]
+mod slicing_tests;
 mod solver;
 mod spring;
 #[cfg(test)]

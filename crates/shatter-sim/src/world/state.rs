@@ -253,7 +253,10 @@ impl World {
             live.stress = StressState::new(
                 &record.prepared,
                 spec.material.limits(),
-                self.settings.stress_budget,
+                (
+                    self.settings.stress_budget,
+                    self.settings.stress_spring_budget,
+                ),
             )
             .map(Box::new);
         }

@@ -1,0 +1,310 @@
+//! The hierarchy as the preconditioner reads it, in its precision ([`Real`]), and its
+//! application: block Jacobi on the finest level plus the coarse correction, added,
+//! the coarse problem approximated by one V-cycle.
+
+use crate::stress::block::{Block6, Dense};
+use crate::stress::local::Dof;
+use crate::stress::multigrid::real::Real;
+use crate::stress::multigrid::setup;
+
+/// A node's `(u, θ)` in the preconditioner's precision.
+pub(super) type Pair<R> = (<R as Real>::V, <R as Real>::V);
+
+/// A 6×6 block `[[uu, ut], [tu, tt]]` in the preconditioner's precision.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Block<R: Real> {
+    uu: R::M,
+    ut: R::M,
+    tu: R::M,
+    tt: R::M,
+}
+
+impl<R: Real> Block<R> {
+    pub fn of(b: &Block6) -> Block<R> {
+        Block {
+            uu: R::matrix(b.uu),
+            ut: R::matrix(b.ut),
+            tu: R::matrix(b.tu),
+            tt: R::matrix(b.tt),
+        }
+    }
+
+    #[inline]
+    fn apply(&self, (u, t): Pair<R>) -> Pair<R> {
+        (
+            R::mv(&self.uu, u) + R::mv(&self.ut, t),
+            R::mv(&self.tu, u) + R::mv(&self.tt, t),
+        )
+    }
+}
+
+/// One level as the preconditioner reads it.
+#[derive(Debug, Clone)]
+pub(super) struct Level<R: Real> {
+    /// The inverse diagonal, and the rows without the diagonal (empty on the finest
+    /// level, which is only smoothed by its inverse diagonal).
+    diag_inv: Vec<Block<R>>,
+    row_start: Vec<u32>,
+    /// Per row, where its columns above the diagonal start.
+    upper: Vec<u32>,
+    cols: Vec<u32>,
+    offd: Vec<Block<R>>,
+    /// `P` by rows (empty on the last level), and its blocks transposed for `Pᵀ`.
+    p_start: Vec<u32>,
+    p_cols: Vec<u32>,
+    p: Vec<Block<R>>,
+    pt: Vec<Block<R>>,
+}
+
+impl<R: Real> Level<R> {
+    /// The level `l` of `setup`.
+    pub fn of(l: usize, setup: &setup::Level) -> Level<R> {
+        let blocks = |v: &[Block6]| v.iter().map(Block::of).collect::<Vec<_>>();
+        let fine = l == 0;
+        Level {
+            diag_inv: blocks(&setup.diag_inv),
+            row_start: if fine {
+                Vec::new()
+            } else {
+                setup.row_start.clone()
+            },
+            upper: if fine {
+                Vec::new()
+            } else {
+                (0..setup.len())
+                    .map(|i| {
+                        let row = setup.row(i);
+                        let above = setup.cols[row.clone()].partition_point(|&j| (j as usize) < i);
+                        (row.start + above) as u32
+                    })
+                    .collect()
+            },
+            cols: if fine { Vec::new() } else { setup.cols.clone() },
+            offd: if fine {
+                Vec::new()
+            } else {
+                blocks(&setup.offd)
+            },
+            p_start: setup.p_start.clone(),
+            p_cols: setup.p_cols.clone(),
+            p: blocks(&setup.p_blocks),
+            pt: setup
+                .p_blocks
+                .iter()
+                .map(|b| Block::of(&b.transpose()))
+                .collect(),
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.diag_inv.len()
+    }
+
+    pub fn set_diag_inv(&mut self, i: usize, b: Block<R>) {
+        self.diag_inv[i] = b;
+    }
+
+    /// Sets the off-diagonal entry `k` (nothing on the finest level, which keeps none).
+    pub fn set_offd(&mut self, k: usize, b: Block<R>) {
+        if let Some(o) = self.offd.get_mut(k) {
+            *o = b;
+        }
+    }
+
+    fn row(&self, i: usize) -> std::ops::Range<usize> {
+        self.row_start[i] as usize..self.row_start[i + 1] as usize
+    }
+
+    fn p_row(&self, i: usize) -> std::ops::Range<usize> {
+        self.p_start[i] as usize..self.p_start[i + 1] as usize
+    }
+
+    /// `b_i − Σ_{j≠i} K_ij·x_j`.
+    #[inline]
+    fn off_residual(&self, i: usize, x: &[Pair<R>], b: Pair<R>) -> Pair<R> {
+        let (mut ru, mut rt) = b;
+        for k in self.row(i) {
+            let (fu, ft) = self.offd[k].apply(x[self.cols[k] as usize]);
+            ru -= fu;
+            rt -= ft;
+        }
+        (ru, rt)
+    }
+
+    /// A forward Gauss-Seidel sweep from `x = 0`: row `i` meets only the `x_j`, `j < i`,
+    /// already swept, so only the blocks below the diagonal are read.
+    fn sweep_from_zero(&self, x: &mut [Pair<R>], b: &[Pair<R>]) {
+        for i in 0..self.len() {
+            let (mut ru, mut rt) = b[i];
+            for k in self.row_start[i] as usize..self.upper[i] as usize {
+                let (fu, ft) = self.offd[k].apply(x[self.cols[k] as usize]);
+                ru -= fu;
+                rt -= ft;
+            }
+            x[i] = self.diag_inv[i].apply((ru, rt));
+        }
+    }
+
+    /// `(b − K·x)_i` right after [`Level::sweep_from_zero`]: row `i`'s diagonal and lower
+    /// part cancel `b_i` by construction, which leaves `−Σ_{j>i} K_ij·x_j`.
+    #[inline]
+    fn residual_after_sweep(&self, i: usize, x: &[Pair<R>]) -> Pair<R> {
+        let (mut ru, mut rt) = (R::ZERO, R::ZERO);
+        for k in self.upper[i] as usize..self.row_start[i + 1] as usize {
+            let (fu, ft) = self.offd[k].apply(x[self.cols[k] as usize]);
+            ru -= fu;
+            rt -= ft;
+        }
+        (ru, rt)
+    }
+
+    /// One block Gauss-Seidel sweep, forward or backward.
+    fn sweep(&self, x: &mut [Pair<R>], b: &[Pair<R>], forward: bool) {
+        let n = self.len();
+        for step in 0..n {
+            let i = if forward { step } else { n - 1 - step };
+            x[i] = self.diag_inv[i].apply(self.off_residual(i, x, b[i]));
+        }
+    }
+
+    /// `out = Pᵀ·f`.
+    pub fn restrict(&self, f: &[Pair<R>], out: &mut [Pair<R>]) {
+        out.fill((R::ZERO, R::ZERO));
+        for (i, &fi) in f.iter().enumerate().take(self.len()) {
+            for k in self.p_row(i) {
+                let (u, t) = self.pt[k].apply(fi);
+                let o = &mut out[self.p_cols[k] as usize];
+                o.0 += u;
+                o.1 += t;
+            }
+        }
+    }
+
+    /// `x += P·xc`.
+    pub fn prolong_add(&self, xc: &[Pair<R>], x: &mut [Pair<R>]) {
+        for (i, xi) in x.iter_mut().enumerate().take(self.len()) {
+            let (mut u, mut t) = *xi;
+            for k in self.p_row(i) {
+                let (du, dt) = self.p[k].apply(xc[self.p_cols[k] as usize]);
+                u += du;
+                t += dt;
+            }
+            *xi = (u, t);
+        }
+    }
+}
+
+/// The vectors of one level.
+#[derive(Debug, Clone, Default)]
+struct LevelWork<R: Real> {
+    b: Vec<Pair<R>>,
+    x: Vec<Pair<R>>,
+    t: Vec<Pair<R>>,
+}
+
+/// Reusable vectors for the preconditioner (of any hierarchy: they are sized at each
+/// use).
+#[derive(Debug, Clone, Default)]
+pub(in crate::stress) struct Work<R: Real> {
+    levels: Vec<LevelWork<R>>,
+    /// The coarsest level's vector in `f64`.
+    dense: Vec<Dof>,
+}
+
+/// The weight of the finest level's block Jacobi.
+const OMEGA: f64 = 0.7;
+
+/// The hierarchy in the preconditioner's precision.
+#[derive(Debug, Clone)]
+pub(super) struct Cycle<R: Real> {
+    pub levels: Vec<Level<R>>,
+    pub coarse: Option<Dense>,
+}
+
+impl<R: Real> Cycle<R> {
+    fn fit(&self, work: &mut Work<R>) {
+        if work.levels.len() < self.levels.len() {
+            work.levels
+                .resize_with(self.levels.len(), LevelWork::default);
+        }
+        for (w, level) in work.levels.iter_mut().zip(&self.levels) {
+            let n = level.len();
+            for v in [&mut w.b, &mut w.x, &mut w.t] {
+                if v.len() != n {
+                    v.clear();
+                    v.resize(n, (R::ZERO, R::ZERO));
+                }
+            }
+        }
+    }
+
+    /// `z = ω·D⁻¹·r + P·V(Pᵀ·r)`, `V` one V-cycle on the coarse levels; `r` and `z` in
+    /// `f64` with the anchored slot (`r`'s is ignored, `z`'s left zero).
+    pub fn apply(&self, r: &[Dof], z: &mut [Dof], work: &mut Work<R>) {
+        self.fit(work);
+        let level = &self.levels[0];
+        let n = level.len();
+        let (fine, coarse) = work.levels.split_at_mut(1);
+        let w = &mut fine[0];
+        for (b, r) in w.b.iter_mut().zip(&r[..n]) {
+            *b = (R::vector(r.0), R::vector(r.1));
+        }
+        if self.levels.len() == 1 {
+            self.bottom(&w.b, &mut w.x, &mut work.dense);
+        } else {
+            let omega = R::scalar(OMEGA);
+            for i in 0..n {
+                let (u, t) = level.diag_inv[i].apply(w.b[i]);
+                w.x[i] = (omega * u, omega * t);
+            }
+            level.restrict(&w.b, &mut coarse[0].b);
+            self.cycle(1, coarse, &mut work.dense);
+            level.prolong_add(&coarse[0].x, &mut w.x);
+        }
+        for (z, x) in z[..n].iter_mut().zip(&w.x) {
+            *z = (R::to_f64(x.0), R::to_f64(x.1));
+        }
+        z[n] = (glam::DVec3::ZERO, glam::DVec3::ZERO);
+    }
+
+    /// The coarsest level: `x = K⁻¹·b` densely, or two Gauss-Seidel sweeps.
+    fn bottom(&self, b: &[Pair<R>], x: &mut [Pair<R>], dense: &mut Vec<Dof>) {
+        let level = self.levels.last().expect("one level");
+        match &self.coarse {
+            Some(factor) => {
+                dense.clear();
+                dense.extend(b.iter().map(|v| (R::to_f64(v.0), R::to_f64(v.1))));
+                factor.solve(dense);
+                for (x, d) in x.iter_mut().zip(dense.iter()) {
+                    *x = (R::vector(d.0), R::vector(d.1));
+                }
+            }
+            None => {
+                x.fill((R::ZERO, R::ZERO));
+                level.sweep(x, b, true);
+                level.sweep(x, b, false);
+            }
+        }
+    }
+
+    /// Level `l`'s V-cycle (`l ≥ 1`): `work[0].x ≈ K_l⁻¹·work[0].b`, deeper levels in
+    /// `work[1..]`; forward Gauss-Seidel before the coarse correction, backward after.
+    /// The forward sweep and the residual after it read each block once between them.
+    fn cycle(&self, l: usize, work: &mut [LevelWork<R>], dense: &mut Vec<Dof>) {
+        let level = &self.levels[l];
+        let (here, deeper) = work.split_at_mut(1);
+        let w = &mut here[0];
+        if l + 1 == self.levels.len() {
+            self.bottom(&w.b, &mut w.x, dense);
+            return;
+        }
+        level.sweep_from_zero(&mut w.x, &w.b);
+        for i in 0..level.len() {
+            w.t[i] = level.residual_after_sweep(i, &w.x);
+        }
+        level.restrict(&w.t, &mut deeper[0].b);
+        self.cycle(l + 1, deeper, dense);
+        level.prolong_add(&deeper[0].x, &mut w.x);
+        level.sweep(&mut w.x, &w.b, false);
+    }
+}
