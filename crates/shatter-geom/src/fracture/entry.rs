@@ -157,6 +157,9 @@ fn fracture_tagged(
     if !partial || frame.is_per_axis() {
         check_volume_sum(&local, volume)?;
     }
+    // Every result is checked as `Fracture::validate` checks it (closed 2-manifold
+    // fragments, no faces back to back, well-formed bonds): a wrong one is refused.
+    local.validate(None)?;
     let mut result = frame.fracture_to_world(local)?;
     for f in &mut result.fragments {
         f.mesh.mark_solid();
