@@ -84,13 +84,13 @@ pub(super) const SNAP_TOLERANCE: f64 = 1e-8;
 fn union_of(soup: &Soup, diagonal: f64) -> Result<United, UnionFailed> {
     let tolerance = crate::mesh::CROSSING_TOLERANCE * diagonal;
     let shallow = |s: &Soup| super::crossings(s).1 <= tolerance;
-    if let Ok(lean) = lean_union(soup) {
-        if shallow(&lean) {
-            return Ok(United {
-                soup: lean,
-                snapped: 0,
-            });
-        }
+    if let Ok(lean) = lean_union(soup)
+        && shallow(&lean)
+    {
+        return Ok(United {
+            soup: lean,
+            snapped: 0,
+        });
     }
     let mut snapped_soup = soup.clone();
     let snapped = super::weld::coordinates(&mut snapped_soup, SNAP_TOLERANCE * diagonal);
@@ -98,13 +98,13 @@ fn union_of(soup: &Soup, diagonal: f64) -> Result<United, UnionFailed> {
         super::weld::exact(&mut snapped_soup);
         super::clean::degenerate(&mut snapped_soup);
         super::clean::duplicates(&mut snapped_soup);
-        if let Ok(lean) = lean_union(&snapped_soup) {
-            if shallow(&lean) {
-                return Ok(United {
-                    soup: lean,
-                    snapped,
-                });
-            }
+        if let Ok(lean) = lean_union(&snapped_soup)
+            && shallow(&lean)
+        {
+            return Ok(United {
+                soup: lean,
+                snapped,
+            });
         }
     }
     Ok(United {
@@ -304,10 +304,10 @@ fn retreat_pinches(pos: &mut [DVec3], tris: &[[u32; 3]]) {
         }
     }
     for v in shared.into_iter().flatten() {
-        if let Some(n) = normal[v].try_normalize() {
-            if count[v] > 0 {
-                pos[v] -= n * (1e-6 * length[v] / f64::from(count[v]));
-            }
+        if let Some(n) = normal[v].try_normalize()
+            && count[v] > 0
+        {
+            pos[v] -= n * (1e-6 * length[v] / f64::from(count[v]));
         }
     }
 }
