@@ -58,42 +58,58 @@ pub(super) struct Level<R: Real> {
 
 impl<R: Real> Level<R> {
     /// The level `l` of `setup`.
+    #[cfg(test)]
     pub fn of(l: usize, setup: &setup::Level) -> Level<R> {
-        let blocks = |v: &[Block6]| v.iter().map(Block::of).collect::<Vec<_>>();
-        let fine = l == 0;
-        Level {
-            diag_inv: blocks(&setup.diag_inv),
-            row_start: if fine {
-                Vec::new()
-            } else {
-                setup.row_start.clone()
-            },
-            upper: if fine {
-                Vec::new()
-            } else {
-                (0..setup.len())
-                    .map(|i| {
-                        let row = setup.row(i);
-                        let above = setup.cols[row.clone()].partition_point(|&j| (j as usize) < i);
-                        (row.start + above) as u32
-                    })
-                    .collect()
-            },
-            cols: if fine { Vec::new() } else { setup.cols.clone() },
-            offd: if fine {
-                Vec::new()
-            } else {
-                blocks(&setup.offd)
-            },
-            p_start: setup.p_start.clone(),
-            p_cols: setup.p_cols.clone(),
-            p: blocks(&setup.p_blocks),
-            pt: setup
-                .p_blocks
-                .iter()
-                .map(|b| Block::of(&b.transpose()))
-                .collect(),
+        let mut level = Level::start(l);
+        for i in 0..setup.len() {
+            level.push_row(setup, i);
         }
+        level
+    }
+
+    /// An empty level `l` (the finest for `l == 0`), to be filled row by row with
+    /// [`Level::push_row`].
+    pub fn start(l: usize) -> Level<R> {
+        Level {
+            diag_inv: Vec::new(),
+            row_start: if l == 0 { Vec::new() } else { vec![0] },
+            upper: Vec::new(),
+            cols: Vec::new(),
+            offd: Vec::new(),
+            p_start: vec![0],
+            p_cols: Vec::new(),
+            p: Vec::new(),
+            pt: Vec::new(),
+        }
+    }
+
+    /// Appends row `i` of `setup` (the rows before it appended); returns the blocks
+    /// converted.
+    pub fn push_row(&mut self, setup: &setup::Level, i: usize) -> usize {
+        self.diag_inv.push(Block::of(&setup.diag_inv[i]));
+        let mut blocks = 1;
+        if !self.row_start.is_empty() {
+            let row = setup.row(i);
+            let above = setup.cols[row.clone()].partition_point(|&j| (j as usize) < i);
+            self.upper.push((row.start + above) as u32);
+            self.cols.extend_from_slice(&setup.cols[row.clone()]);
+            self.offd.extend(setup.offd[row.clone()].iter().map(Block::of));
+            self.row_start.push(self.cols.len() as u32);
+            blocks += row.len();
+        }
+        if !setup.p_start.is_empty() {
+            let row = setup.p_row(i);
+            self.p_cols.extend_from_slice(&setup.p_cols[row.clone()]);
+            self.p.extend(setup.p_blocks[row.clone()].iter().map(Block::of));
+            self.pt.extend(
+                setup.p_blocks[row.clone()]
+                    .iter()
+                    .map(|b| Block::of(&b.transpose())),
+            );
+            self.p_start.push(self.p_cols.len() as u32);
+            blocks += 2 * row.len();
+        }
+        blocks
     }
 
     pub fn len(&self) -> usize {
