@@ -12,10 +12,10 @@ use super::solver::springs;
 use super::*;
 use crate::testing::box_grid_fracture;
 
-const G: DVec3 = DVec3::new(0.0, -9.81, 0.0);
+pub(super) const G: DVec3 = DVec3::new(0.0, -9.81, 0.0);
 
 /// A wall of `nx × ny × nz` blocks of 0.2 m, its bottom row anchored.
-fn wall(nx: u32, ny: u32, nz: u32) -> BondGraph {
+pub(super) fn wall(nx: u32, ny: u32, nz: u32) -> BondGraph {
     let f = box_grid_fracture(
         [nx, ny, nz],
         DVec3::new(0.2 * nx as f64, 0.2 * ny as f64, 0.2 * nz as f64),
@@ -25,7 +25,7 @@ fn wall(nx: u32, ny: u32, nz: u32) -> BondGraph {
 
 /// The largest difference of two solvers' stresses over every bond, and the peak stress
 /// of the first.
-fn difference(graph: &BondGraph, a: &StressSolver, b: &StressSolver) -> (f64, f64) {
+pub(super) fn difference(graph: &BondGraph, a: &StressSolver, b: &StressSolver) -> (f64, f64) {
     let (mut worst, mut peak) = (0.0f64, 0.0f64);
     for k in 0..graph.bonds().len() as u32 {
         let (x, y) = (a.stress(k), b.stress(k));
@@ -40,7 +40,7 @@ fn difference(graph: &BondGraph, a: &StressSolver, b: &StressSolver) -> (f64, f6
 
 /// Solves until converged (at most 1,000 solves), `forces` in the first solve only;
 /// returns the reports.
-fn until_converged(
+pub(super) fn until_converged(
     solver: &mut StressSolver,
     graph: &BondGraph,
     broken: &[bool],

@@ -256,6 +256,7 @@ impl World {
                 (
                     self.settings.stress_budget,
                     self.settings.stress_spring_budget,
+                    self.settings.stress_build_budget,
                 ),
             )
             .map(Box::new);

@@ -37,8 +37,8 @@ use glam::DVec3;
 
 use crate::stress::local::{Dof, LocalSprings};
 pub(in crate::stress) use build::Build;
-pub(super) use cycle::Work;
 use cycle::Cycle;
+pub(super) use cycle::Work;
 use real::{F32, Real};
 
 /// The hierarchy of one anchored island, applied in precision `R`.
@@ -63,6 +63,18 @@ impl<R: Real> Multigrid<R> {
     /// the anchored slot (`r`'s is ignored, `z`'s left zero).
     pub fn apply(&self, r: &[Dof], z: &mut [Dof], work: &mut Work<R>) {
         self.cycle.apply(r, z, work);
+    }
+
+    /// [`Multigrid::apply`] restricted to the finest rows `rows` (see
+    /// [`Cycle::apply_rows`]): an island's preconditioner from a hierarchy built for more
+    /// nodes than it has.
+    pub fn apply_rows(&self, rows: &[u32], r: &[Dof], z: &mut [Dof], work: &mut Work<R>) {
+        self.cycle.apply_rows(rows, r, z, work);
+    }
+
+    /// Block operations of one application: on the coarse levels, and per finest row.
+    pub fn cost(&self) -> (usize, f64) {
+        self.cycle.cost()
     }
 }
 

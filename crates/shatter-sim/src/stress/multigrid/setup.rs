@@ -109,4 +109,3 @@ impl Accumulator {
         self.entries.drain(..)
     }
 }
-

@@ -3,7 +3,8 @@
 
 use glam::{DMat3, DVec3};
 
-use super::islands::{Hierarchy, IslandState, Part};
+use super::hierarchies::Hierarchy;
+use super::islands::{IslandState, Part};
 use super::{Outcome, StressSolver};
 use crate::stress::local::{Dof, LocalSprings, ZERO};
 use crate::stress::multigrid::Work;
@@ -22,20 +23,14 @@ pub(super) struct Scratch {
     pre: PreWork,
 }
 
-/// The preconditioner's vectors.
-#[derive(Debug, Clone, Default)]
-struct PreWork {
-    /// The multigrid's.
-    work: Work<F32>,
-    /// Residual and correction in a kept hierarchy's order.
-    hr: Vec<Dof>,
-    hz: Vec<Dof>,
-}
+/// The preconditioner's vectors: the multigrid's.
+type PreWork = Work<F32>;
 
 /// The preconditioner of one island.
 struct Pre<'a> {
     multigrid: Option<&'a Hierarchy>,
-    map: Option<&'a [u32]>,
+    /// With a hierarchy built for more nodes: the island's rows in it.
+    rows: Option<&'a [u32]>,
     jacobi: &'a [(DMat3, DMat3)],
 }
 
@@ -68,7 +63,7 @@ impl StressSolver {
             gravity,
             dynamic,
             multigrid,
-            map,
+            rows,
             jacobi,
             load_scale,
             ..
@@ -85,8 +80,8 @@ impl StressSolver {
             }
         };
         let pre = Pre {
-            multigrid: multigrid.as_deref(),
-            map: map.as_deref(),
+            multigrid: multigrid.and_then(|k| self.hierarchies.get(k)),
+            rows: rows.as_deref(),
             jacobi,
         };
         if !loaded && gravity.converged && gravity.residual > tolerance * gravity.scale {
@@ -355,29 +350,13 @@ fn run(
 
 /// `z = M⁻¹·r` on the island's free nodes (its multigrid's W-cycle, or block Jacobi);
 /// returns `r·z`.
-fn precondition(pre: &Pre<'_>, r: &[Dof], z: &mut [Dof], w: &mut PreWork) -> f64 {
-    let PreWork { work, hr, hz } = w;
+fn precondition(pre: &Pre<'_>, r: &[Dof], z: &mut [Dof], work: &mut PreWork) -> f64 {
     let n = r.len() - 1;
-    match (pre.multigrid, pre.map) {
+    match (pre.multigrid, pre.rows) {
         (Some(h), None) => h.multigrid.apply(r, z, work),
-        (Some(h), Some(map)) => {
-            // On the hierarchy's nodes: the residual on this island's, zero on those it
-            // lost (see `Hierarchy`).
-            hr.clear();
-            hr.extend(
-                map.iter()
-                    .map(|&l| if l == u32::MAX { ZERO } else { r[l as usize] }),
-            );
-            hr.push(ZERO);
-            hz.resize(hr.len(), ZERO);
-            h.multigrid.apply(hr, hz, work);
-            for (&l, &v) in map.iter().zip(hz.iter()) {
-                if l != u32::MAX {
-                    z[l as usize] = v;
-                }
-            }
-            z[n] = ZERO;
-        }
+        // On the island's rows of the hierarchy: the residual there, zero on the rows it
+        // lost (see `Hierarchy`).
+        (Some(h), Some(rows)) => h.multigrid.apply_rows(rows, r, z, work),
         (None, _) => {
             for ((z, r), (pu, pt)) in z.iter_mut().zip(r).zip(pre.jacobi) {
                 *z = (*pu * r.0, *pt * r.1);

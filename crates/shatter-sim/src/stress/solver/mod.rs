@@ -31,9 +31,11 @@ use crate::stress::limits::{BondStress, Failure, StressLimits};
 use crate::stress::spring::Spring;
 
 mod cg;
+mod hierarchies;
 mod islands;
 
 use cg::Scratch;
+use hierarchies::Hierarchies;
 use islands::IslandState;
 
 /// Nominal Young's modulus (Pa); it cancels out of the stresses.
@@ -67,6 +69,16 @@ pub struct SolverSettings {
     /// solve always does at least one start or iteration; what is left goes on at the
     /// next solve, as with `budget`.
     pub spring_budget: Option<usize>,
+    /// Most work per [`StressSolver::solve`] on multigrid hierarchies under construction,
+    /// in block operations (a 6×6 block times a vector, 36 multiply-adds; `None`: an
+    /// island builds its hierarchy at once, in the solve that needs it). With a budget,
+    /// an island split from a larger one uses that island's hierarchy (restricted to its
+    /// nodes) and an island with none to use block Jacobi, while its own is built a slice
+    /// per solve; a slice stops at the end of the row of the build that reaches the
+    /// budget. [`StressSolver::prepare`] always builds at once. At the World's default
+    /// ([`DEFAULT_STRESS_BUILD_BUDGET`](crate::DEFAULT_STRESS_BUILD_BUDGET)) a
+    /// 20,000-bond island's hierarchy takes about 50 solves.
+    pub build_budget: Option<usize>,
     /// Shear over normal stiffness, `G/E`.
     pub shear_ratio: f64,
     /// How the conjugate gradients are preconditioned.
@@ -127,6 +139,7 @@ impl Default for SolverSettings {
             max_iterations: 1000,
             budget: None,
             spring_budget: None,
+            build_budget: None,
             shear_ratio: 0.4,
             preconditioner: Preconditioner::Multigrid,
         }
@@ -148,9 +161,12 @@ pub struct SolveReport {
     pub residual: f64,
     /// Anchored islands left for a later solve because the budget was spent.
     pub islands_deferred: usize,
-    /// Multigrid hierarchies built (after the bonds changed); an island that only lost
-    /// bonds, or a few nodes, keeps its hierarchy.
+    /// Multigrid hierarchies built or completed (after the bonds changed); an island
+    /// that only lost bonds, or up to half its nodes, keeps its hierarchy.
     pub hierarchies_built: usize,
+    /// Work done on hierarchies under construction, in block operations (see
+    /// [`SolverSettings::build_budget`]).
+    pub build_work: usize,
     /// Springs visited by starts and iterations (see [`SolverSettings::spring_budget`]).
     pub springs: usize,
 }
@@ -201,6 +217,8 @@ pub struct StressSolver {
     gravity: DVec3,
     /// Mean bond length: torque residuals are divided by it to compare with forces.
     length_scale: f64,
+    /// The multigrid hierarchies the islands use.
+    hierarchies: Hierarchies,
     scratch: Scratch,
     /// Per node, the search that last reached it (see `islands.rs`, `detour`).
     seen: Vec<u32>,
@@ -249,6 +267,7 @@ impl StressSolver {
             local: vec![u32::MAX; n],
             gravity: DVec3::ZERO,
             length_scale,
+            hierarchies: Hierarchies::default(),
             scratch: Scratch::default(),
             seen: vec![0; n],
             stamp: 0,
@@ -270,7 +289,7 @@ impl StressSolver {
         if self.topology.as_deref() == Some(broken) {
             return 0;
         }
-        self.update_topology(graph, broken)
+        self.update_topology(graph, broken, true)
     }
 
     /// Solves the anchored islands of the intact bonds (`broken[b]`: bond `b` is gone)
@@ -288,11 +307,15 @@ impl StressSolver {
             .topology
             .as_deref()
             .is_none_or(|t| t.len() != broken.len() || t != broken);
-        let built = if changed {
-            self.update_topology(graph, broken)
+        let mut built = if changed {
+            self.update_topology(graph, broken, false)
         } else {
             0
         };
+        // Hierarchies under construction go on (and are used from this solve if done).
+        let (build_work, completed) =
+            self.advance_builds(self.settings.build_budget.unwrap_or(usize::MAX));
+        built += completed;
         if gravity != self.gravity {
             self.gravity = gravity;
             self.islands.iter_mut().for_each(|i| {
@@ -315,6 +338,7 @@ impl StressSolver {
         let mut report = SolveReport {
             converged: true,
             hierarchies_built: built,
+            build_work,
             ..SolveReport::default()
         };
         let mut budget = self.settings.budget.unwrap_or(usize::MAX);
@@ -336,7 +360,7 @@ impl StressSolver {
             }
             // Starts and iterations this island may have: what is left of the springs, at
             // least one for the first island that works in this solve.
-            let bonds = island.bonds.len().max(1);
+            let bonds = island.cost(&self.hierarchies);
             let units = match springs_left {
                 usize::MAX => usize::MAX,
                 left => (left / bonds).max(usize::from(report.springs == 0)),
