@@ -232,3 +232,54 @@ fn an_island_with_no_hierarchy_to_use_is_solved_on_block_jacobi_while_its_own_is
     let iterations = |r: &[SolveReport]| r.iter().map(|r| r.iterations).sum::<usize>();
     assert_eq!(iterations(&a), iterations(&b));
 }
+
+#[test]
+fn a_brick_knocked_out_of_a_wall_is_dropped_from_its_island_in_place_with_the_answer_of_a_rebuild()
+{
+    let (nx, ny, nz) = (12, 9, 2);
+    let graph = wall(nx, ny, nz);
+    let settings = SolverSettings {
+        tolerance: 1e-9,
+        build_budget: Some(500),
+        ..SolverSettings::default()
+    };
+    let mut solver = StressSolver::new(&graph, settings);
+    let mut broken = vec![false; graph.bonds().len()];
+    solver.prepare(&graph, &broken);
+    until_converged(&mut solver, &graph, &broken, &[]);
+    // A brick of the front layer in the middle of the wall, and a pair of bonded bricks
+    // at the top corner: every bond to the rest breaks.
+    let brick = 6 + nx * 4;
+    let (corner, below) = (nx * ny - 1, nx * ny - 1 - nx);
+    let pieces = [vec![brick], vec![corner, below]];
+    for piece in &pieces {
+        for (b, bond) in graph.bonds().iter().enumerate() {
+            if piece.contains(&bond.a) != piece.contains(&bond.b) {
+                broken[b] = true;
+            }
+        }
+    }
+    let reports = until_converged(&mut solver, &graph, &broken, &[]);
+    assert!(!reports[0].rebuilt, "the pieces are dropped in place");
+    for &v in pieces.iter().flatten() {
+        assert!(!solver.is_supported(v), "node {v} left its island");
+    }
+    // The bond between the two corner bricks is intact but carries nothing.
+    let inside = graph
+        .bonds()
+        .iter()
+        .position(|b| (b.a, b.b) == (below, corner))
+        .expect("the corner bond") as u32;
+    assert_eq!(solver.stress(inside), BondStress::default());
+    let mut fresh = StressSolver::new(&graph, settings);
+    until_converged(&mut fresh, &graph, &broken, &[]);
+    let (worst, peak) = difference(&graph, &solver, &fresh);
+    assert!(worst <= 1e-6 * peak, "{worst:e} of {peak:e}");
+    // Cutting the wall in two anchored parts does rebuild.
+    let cut: Vec<bool> = cut_at(&graph, nx, 6)
+        .iter()
+        .zip(&broken)
+        .map(|(c, b)| *c || *b)
+        .collect();
+    assert!(solver.solve(&graph, &cut, G, &[]).rebuilt);
+}

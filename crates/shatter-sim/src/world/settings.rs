@@ -125,6 +125,11 @@ pub struct Stats {
     /// Wall-clock milliseconds of the last step's stress solves alone (part of
     /// `stress_ms`): what the solver's budgets bound.
     pub stress_solve_ms: f64,
+    /// CPU milliseconds of the stepping thread in the last step's stress solves, with a
+    /// clock set by [`World::set_cpu_clock`](crate::World::set_cpu_clock) (`None`
+    /// without): unlike `stress_solve_ms`, not inflated when other processes share the
+    /// core.
+    pub stress_solve_cpu_ms: Option<f64>,
     /// Bodies removed because their state diverged (NaN or runaway speed).
     pub diverged: usize,
     /// Debris bodies removed by the cap.

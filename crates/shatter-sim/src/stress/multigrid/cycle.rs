@@ -36,6 +36,15 @@ impl<R: Real> Block<R> {
             R::mv(&self.tu, u) + R::mv(&self.tt, t),
         )
     }
+
+    /// The transpose applied: `[[uuᵀ, tuᵀ], [utᵀ, ttᵀ]]·(u, θ)`.
+    #[inline]
+    fn apply_transpose(&self, (u, t): Pair<R>) -> Pair<R> {
+        (
+            R::mtv(&self.uu, u) + R::mtv(&self.tu, t),
+            R::mtv(&self.ut, u) + R::mtv(&self.tt, t),
+        )
+    }
 }
 
 /// One level as the preconditioner reads it.
@@ -49,11 +58,11 @@ pub(super) struct Level<R: Real> {
     upper: Vec<u32>,
     cols: Vec<u32>,
     offd: Vec<Block<R>>,
-    /// `P` by rows (empty on the last level), and its blocks transposed for `Pᵀ`.
+    /// `P` by rows (empty on the last level); `Pᵀ` is applied through its blocks
+    /// transposed on the fly (storing them too doubled what an application reads).
     p_start: Vec<u32>,
     p_cols: Vec<u32>,
     p: Vec<Block<R>>,
-    pt: Vec<Block<R>>,
 }
 
 impl<R: Real> Level<R> {
@@ -69,7 +78,6 @@ impl<R: Real> Level<R> {
             p_start: vec![0],
             p_cols: Vec::new(),
             p: Vec::new(),
-            pt: Vec::new(),
         }
     }
 
@@ -93,13 +101,8 @@ impl<R: Real> Level<R> {
             self.p_cols.extend_from_slice(&setup.p_cols[row.clone()]);
             self.p
                 .extend(setup.p_blocks[row.clone()].iter().map(Block::of));
-            self.pt.extend(
-                setup.p_blocks[row.clone()]
-                    .iter()
-                    .map(|b| Block::of(&b.transpose())),
-            );
             self.p_start.push(self.p_cols.len() as u32);
-            blocks += 2 * row.len();
+            blocks += row.len();
         }
         blocks
     }
@@ -179,7 +182,7 @@ impl<R: Real> Level<R> {
     #[inline]
     fn restrict_row(&self, i: usize, f: Pair<R>, out: &mut [Pair<R>]) {
         for k in self.p_row(i) {
-            let (u, t) = self.pt[k].apply(f);
+            let (u, t) = self.p[k].apply_transpose(f);
             let o = &mut out[self.p_cols[k] as usize];
             o.0 += u;
             o.1 += t;
@@ -203,7 +206,7 @@ impl<R: Real> Level<R> {
         out.fill((R::ZERO, R::ZERO));
         for (i, &fi) in f.iter().enumerate().take(self.len()) {
             for k in self.p_row(i) {
-                let (u, t) = self.pt[k].apply(fi);
+                let (u, t) = self.p[k].apply_transpose(fi);
                 let o = &mut out[self.p_cols[k] as usize];
                 o.0 += u;
                 o.1 += t;

@@ -182,12 +182,22 @@ impl StressSolver {
             .sqrt()
     }
 
+    /// The mass of free node `v` of an island, zero if it was dropped from it (see
+    /// `detach.rs`): it carries no load.
+    fn live_mass(&self, v: u32) -> f64 {
+        if self.local[v as usize] == u32::MAX {
+            0.0
+        } else {
+            self.mass[v as usize]
+        }
+    }
+
     /// Gravity's loads on the free nodes `free`: `m·g`, then the anchored slot.
     fn gravity_loads(&self, free: &[u32], f: &mut Vec<Dof>) {
         f.clear();
         f.extend(
             free.iter()
-                .map(|&v| (self.mass[v as usize] * self.gravity, DVec3::ZERO)),
+                .map(|&v| (self.live_mass(v) * self.gravity, DVec3::ZERO)),
         );
         f.push(ZERO);
     }
@@ -210,13 +220,13 @@ impl StressSolver {
     /// d'Alembert forces of the island's rigid acceleration under the dynamic forces, so
     /// they have no net force or moment left for the anchors.
     fn relieve(&self, free: &[u32], dynamic: &[(u32, DVec3)], f: &mut [Dof]) {
-        let mass: f64 = free.iter().map(|&v| self.mass[v as usize]).sum();
+        let mass: f64 = free.iter().map(|&v| self.live_mass(v)).sum();
         if mass <= 0.0 {
             return;
         }
         let c = free
             .iter()
-            .map(|&v| self.mass[v as usize] * self.centroid[v as usize])
+            .map(|&v| self.live_mass(v) * self.centroid[v as usize])
             .sum::<DVec3>()
             / mass;
         let (mut force, mut torque) = (DVec3::ZERO, DVec3::ZERO);
@@ -228,14 +238,14 @@ impl StressSolver {
         let mut inertia = DMat3::ZERO;
         for &v in free {
             let r = self.centroid[v as usize] - c;
-            let m = self.mass[v as usize];
+            let m = self.live_mass(v);
             inertia += (DMat3::from_diagonal(DVec3::splat(r.length_squared())) - outer(r, r)) * m;
         }
         let a = force / mass;
         let alpha = invert(inertia) * torque;
         for (k, &v) in free.iter().enumerate() {
             let r = self.centroid[v as usize] - c;
-            f[k].0 -= self.mass[v as usize] * (a + alpha.cross(r));
+            f[k].0 -= self.live_mass(v) * (a + alpha.cross(r));
         }
     }
 }

@@ -116,9 +116,10 @@ const DETOUR: usize = 256;
 
 impl StressSolver {
     /// Brings the islands to the bond mask `broken`. When bonds only broke and each still
-    /// has a detour between its ends (no island split), the islands stay: the broken
-    /// springs are zeroed and taken off their multigrid hierarchies (see
-    /// `multigrid/update.rs`); otherwise they are rebuilt ([`StressSolver::rebuild`]).
+    /// has a detour between its ends, or cut off a small piece without an anchor, the
+    /// islands stay: the broken springs (and the pieces') are zeroed and taken off their
+    /// multigrid hierarchies (see `multigrid/update.rs`), the pieces' nodes dropped;
+    /// otherwise they are rebuilt ([`StressSolver::rebuild`]).
     /// Returns how many hierarchies were built.
     pub(super) fn update_topology(
         &mut self,
@@ -135,16 +136,26 @@ impl StressSolver {
                 },
             )
         });
-        // A bond outside the anchored islands changes none of them.
-        if let Some(newly) = newly
-            && newly.iter().all(|&b| {
-                self.node_island[graph.bonds()[b as usize].a as usize] == u32::MAX
+        // A bond outside the anchored islands changes none of them; a bond with a detour
+        // leaves its island whole; one whose side is a small piece without an anchor
+        // drops that piece from its island (see `detach.rs`).
+        if let Some(newly) = newly {
+            let mut pieces = Vec::new();
+            let in_place = newly.iter().all(|&b| {
+                let bond = &graph.bonds()[b as usize];
+                self.node_island[bond.a as usize] == u32::MAX
                     || self.detour(graph, broken, b)
-            })
-        {
-            self.remove_bonds(&newly);
-            self.topology = Some(broken.to_vec());
-            return 0;
+                    || self.loose_piece(graph, broken, bond.a, &mut pieces)
+                    || self.loose_piece(graph, broken, bond.b, &mut pieces)
+            });
+            if in_place {
+                let mut bonds = newly;
+                bonds.extend(self.piece_bonds(graph, broken, &pieces));
+                self.remove_bonds(&bonds);
+                self.drop_nodes(&pieces);
+                self.topology = Some(broken.to_vec());
+                return 0;
+            }
         }
         self.rebuild(graph, broken, self.topology.clone().as_deref(), at_once)
     }
@@ -269,6 +280,7 @@ impl StressSolver {
         at_once: bool,
     ) -> usize {
         let mut built = 0;
+        self.rebuilds += 1;
         let sliced = self.settings.build_budget.is_some() && !at_once;
         // Hierarchies that islands split from this mask may use: only bonds broke since
         // (no bond came back, no island grew).

@@ -31,6 +31,7 @@ use crate::stress::limits::{BondStress, Failure, StressLimits};
 use crate::stress::spring::Spring;
 
 mod cg;
+mod detach;
 mod hierarchies;
 mod islands;
 
@@ -167,6 +168,11 @@ pub struct SolveReport {
     /// Work done on hierarchies under construction, in block operations (see
     /// [`SolverSettings::build_budget`]).
     pub build_work: usize,
+    /// Whether the islands were rebuilt from the bond mask, every bond read (an island
+    /// split into parts that each have an anchor, or into large ones); bonds that break
+    /// with a detour between their ends, or cut off small pieces without an anchor, are
+    /// taken off in place.
+    pub rebuilt: bool,
     /// Springs visited by starts and iterations (see [`SolverSettings::spring_budget`]).
     pub springs: usize,
 }
@@ -219,6 +225,8 @@ pub struct StressSolver {
     length_scale: f64,
     /// The multigrid hierarchies the islands use.
     hierarchies: Hierarchies,
+    /// Rebuilds of the islands so far.
+    rebuilds: u64,
     scratch: Scratch,
     /// Per node, the search that last reached it (see `islands.rs`, `detour`).
     seen: Vec<u32>,
@@ -268,6 +276,7 @@ impl StressSolver {
             gravity: DVec3::ZERO,
             length_scale,
             hierarchies: Hierarchies::default(),
+            rebuilds: 0,
             scratch: Scratch::default(),
             seen: vec![0; n],
             stamp: 0,
@@ -307,6 +316,7 @@ impl StressSolver {
             .topology
             .as_deref()
             .is_none_or(|t| t.len() != broken.len() || t != broken);
+        let rebuilds = self.rebuilds;
         let mut built = if changed {
             self.update_topology(graph, broken, false)
         } else {
@@ -339,6 +349,7 @@ impl StressSolver {
             converged: true,
             hierarchies_built: built,
             build_work,
+            rebuilt: self.rebuilds != rebuilds,
             ..SolveReport::default()
         };
         let mut budget = self.settings.budget.unwrap_or(usize::MAX);
