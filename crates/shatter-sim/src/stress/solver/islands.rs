@@ -356,7 +356,7 @@ impl StressSolver {
                 && !updated[k as usize]
             {
                 updated[k as usize] = true;
-                self.take_off_broken(k, broken, old_mask);
+                self.take_off_broken(k, broken, old_mask, &old_island);
             }
             let parent = parent.and_then(|k| {
                 let h = self.hierarchies.get(k)?;
@@ -428,8 +428,15 @@ impl StressSolver {
     }
 
     /// Takes the springs broken since `old_mask` with an end among hierarchy `k`'s nodes
-    /// off it.
-    fn take_off_broken(&mut self, k: u32, broken: &[bool], old_mask: Option<&[bool]>) {
+    /// off it; not those of nodes that were in no anchored island (`old_island`), such as
+    /// pieces dropped in place, whose springs were taken off then.
+    fn take_off_broken(
+        &mut self,
+        k: u32,
+        broken: &[bool],
+        old_mask: Option<&[bool]>,
+        old_island: &[u32],
+    ) {
         let Some(h) = self.hierarchies.get(k) else {
             return;
         };
@@ -437,6 +444,7 @@ impl StressSolver {
             .into_iter()
             .flat_map(|t| (0..broken.len()).filter(|&b| broken[b] && !t[b]))
             .map(|b| &self.springs[b])
+            .filter(|s| old_island[s.a as usize] != u32::MAX)
             .filter(|s| h.nodes.binary_search(&s.a).is_ok() || h.nodes.binary_search(&s.b).is_ok())
             .map(|s| {
                 LocalSpring::new(
