@@ -123,6 +123,45 @@ fn the_spring_budget_bounds_every_solve_and_the_sliced_solve_ends_where_the_whol
 }
 
 #[test]
+fn an_island_dearer_than_the_spring_budget_waits_for_the_springs_saved_and_ends_where_the_whole_solve_does()
+ {
+    let graph = wall(12, 10, 2);
+    let bonds = graph.bonds().len();
+    let broken = vec![false; bonds];
+    let hit = [(12 * 8 + 5, DVec3::new(0.0, 0.0, -4e5))];
+    let mut whole = StressSolver::new(&graph, SolverSettings::default());
+    whole.solve(&graph, &broken, G, &[]);
+    let once = whole.solve(&graph, &broken, G, &hit);
+    // A unit every two or three solves.
+    let budget = bonds * 2 / 5;
+    let mut sliced = StressSolver::new(
+        &graph,
+        SolverSettings {
+            spring_budget: Some(budget),
+            ..SolverSettings::default()
+        },
+    );
+    until_converged(&mut sliced, &graph, &broken, &[]);
+    let reports = until_converged(&mut sliced, &graph, &broken, &hit);
+    let mut visited = 0;
+    for (k, r) in reports.iter().enumerate() {
+        assert!(r.springs == 0 || r.springs == bonds, "{r:?}");
+        visited += r.springs;
+        // On average never over the budget (the first solve had nothing saved).
+        assert!(
+            visited <= budget * (k + 1),
+            "{visited} after {} solves",
+            k + 1
+        );
+    }
+    let units = once.iterations + 1;
+    assert_eq!(visited, units * bonds);
+    assert!(reports.len() >= units * 5 / 2, "{} solves", reports.len());
+    let (worst, peak) = difference(&graph, &whole, &sliced);
+    assert!(worst <= 1e-9 * peak, "{worst:e} of {peak:e}");
+}
+
+#[test]
 fn the_f32_preconditioner_is_the_f64_one_within_its_precision() {
     let graph = wall(14, 10, 2);
     let all_springs = springs(&graph, &SolverSettings::default());

@@ -274,8 +274,8 @@ impl<R: Real> Cycle<R> {
     }
 
     /// `z = ω·D⁻¹·r + P·V(Pᵀ·r)`, `V` one V-cycle on the coarse levels; `r` and `z` in
-    /// `f64` with the anchored slot (`r`'s is ignored, `z`'s left zero).
-    pub fn apply(&self, r: &[Dof], z: &mut [Dof], work: &mut Work<R>) {
+    /// `f64` with the anchored slot (`r`'s is ignored, `z`'s left zero). Returns `r·z`.
+    pub fn apply(&self, r: &[Dof], z: &mut [Dof], work: &mut Work<R>) -> f64 {
         self.fit(work);
         let level = &self.levels[0];
         let n = level.len();
@@ -296,18 +296,21 @@ impl<R: Real> Cycle<R> {
             self.cycle(1, coarse, &mut work.dense);
             level.prolong_add(&coarse[0].x, &mut w.x);
         }
-        for (z, x) in z[..n].iter_mut().zip(&w.x) {
+        let mut rz = 0.0;
+        for ((z, x), r) in z[..n].iter_mut().zip(&w.x).zip(r) {
             *z = (R::to_f64(x.0), R::to_f64(x.1));
+            rz += r.0.dot(z.0) + r.1.dot(z.1);
         }
         z[n] = (glam::DVec3::ZERO, glam::DVec3::ZERO);
+        rz
     }
 
     /// [`Cycle::apply`] restricted to the finest rows `rows` (ascending): `r` and `z` are
     /// an island's vectors (its anchored slot last), `r[l]` the residual on row `rows[l]`
     /// and zero on the rows not listed, `z[l]` the correction read back on it. The same as
     /// `apply` on the vectors spread over every row, `Sᵀ·M·S` for the selection `S`, at
-    /// the cost of the listed rows and the coarse levels.
-    pub fn apply_rows(&self, rows: &[u32], r: &[Dof], z: &mut [Dof], work: &mut Work<R>) {
+    /// the cost of the listed rows and the coarse levels. Returns `r·z`.
+    pub fn apply_rows(&self, rows: &[u32], r: &[Dof], z: &mut [Dof], work: &mut Work<R>) -> f64 {
         self.fit(work);
         let level = &self.levels[0];
         let (fine, coarse) = work.levels.split_at_mut(1);
@@ -334,11 +337,14 @@ impl<R: Real> Cycle<R> {
                 level.prolong_row(i as usize, &coarse[0].x, &mut w.x);
             }
         }
-        for (z, &i) in z.iter_mut().zip(rows) {
+        let mut rz = 0.0;
+        for ((z, &i), r) in z.iter_mut().zip(rows).zip(r) {
             let x = w.x[i as usize];
             *z = (R::to_f64(x.0), R::to_f64(x.1));
+            rz += r.0.dot(z.0) + r.1.dot(z.1);
         }
         z[rows.len()] = (glam::DVec3::ZERO, glam::DVec3::ZERO);
+        rz
     }
 
     /// Block operations of one [`Cycle::apply`] on the coarse levels (all but the

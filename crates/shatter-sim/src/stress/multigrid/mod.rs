@@ -60,16 +60,16 @@ impl<R: Real> Multigrid<R> {
     }
 
     /// `z ≈ K⁻¹·r` (see the module's doc). `r` and `z` have the finest level's nodes and
-    /// the anchored slot (`r`'s is ignored, `z`'s left zero).
-    pub fn apply(&self, r: &[Dof], z: &mut [Dof], work: &mut Work<R>) {
-        self.cycle.apply(r, z, work);
+    /// the anchored slot (`r`'s is ignored, `z`'s left zero). Returns `r·z`.
+    pub fn apply(&self, r: &[Dof], z: &mut [Dof], work: &mut Work<R>) -> f64 {
+        self.cycle.apply(r, z, work)
     }
 
     /// [`Multigrid::apply`] restricted to the finest rows `rows` (see
     /// [`Cycle::apply_rows`]): an island's preconditioner from a hierarchy built for more
     /// nodes than it has.
-    pub fn apply_rows(&self, rows: &[u32], r: &[Dof], z: &mut [Dof], work: &mut Work<R>) {
-        self.cycle.apply_rows(rows, r, z, work);
+    pub fn apply_rows(&self, rows: &[u32], r: &[Dof], z: &mut [Dof], work: &mut Work<R>) -> f64 {
+        self.cycle.apply_rows(rows, r, z, work)
     }
 
     /// Block operations of one application: on the coarse levels, and per finest row.

@@ -314,8 +314,7 @@ fn run(
                 break;
             }
             iterations += 1;
-            springs.times(&part.p, &mut scratch.q);
-            let pq = dot(&part.p[..n], &scratch.q[..n]);
+            let pq = springs.times(&part.p, &mut scratch.q);
             if !(pq > 0.0 && pq.is_finite()) {
                 break;
             }
@@ -358,30 +357,25 @@ fn run(
     }
 }
 
-/// `z = M⁻¹·r` on the island's free nodes (its multigrid's W-cycle, or block Jacobi);
-/// returns `r·z`.
+/// `z = M⁻¹·r` on the island's free nodes (its multigrid, or block Jacobi); returns `r·z`
+/// (summed as `z` is written).
 fn precondition(pre: &Pre<'_>, r: &[Dof], z: &mut [Dof], work: &mut PreWork) -> f64 {
-    let n = r.len() - 1;
     match (pre.multigrid, pre.rows) {
         (Some(h), None) => h.multigrid.apply(r, z, work),
         // On the island's rows of the hierarchy: the residual there, zero on the rows it
         // lost (see `Hierarchy`).
         (Some(h), Some(rows)) => h.multigrid.apply_rows(rows, r, z, work),
         (None, _) => {
+            let n = r.len() - 1;
+            let mut rz = 0.0;
             for ((z, r), (pu, pt)) in z.iter_mut().zip(r).zip(pre.jacobi) {
                 *z = (*pu * r.0, *pt * r.1);
+                rz += r.0.dot(z.0) + r.1.dot(z.1);
             }
             z[n] = ZERO;
+            rz
         }
     }
-    dot(&r[..n], &z[..n])
-}
-
-fn dot(a: &[Dof], b: &[Dof]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| x.0.dot(y.0) + x.1.dot(y.1))
-        .sum()
 }
 
 /// `|v|` with moments weighted by `weight` (one over the length scale squared).

@@ -66,9 +66,13 @@ pub struct SolverSettings {
     /// iteration's time grows with them. So this, unlike `budget`, bounds a solve's time
     /// for objects of every size: at the World's default
     /// ([`DEFAULT_STRESS_SPRING_BUDGET`](crate::DEFAULT_STRESS_SPRING_BUDGET)) a
-    /// 20,000-bond island advances one iteration per solve and a 1,000-bond one 24. A
-    /// solve always does at least one start or iteration; what is left goes on at the
-    /// next solve, as with `budget`.
+    /// 20,000-bond island advances one iteration per solve and a 1,000-bond one 24. An
+    /// island whose next start or iteration costs more than the springs left waits, and
+    /// the springs left are saved for it (up to that cost) and added to the next solve's:
+    /// a 50,000-bond island iterates every second or third solve, so the springs visited
+    /// per solve average to the budget however large the object (a solve visits at most
+    /// the budget plus one unit of the largest island). What is left goes on at the next
+    /// solve, as with `budget`.
     pub spring_budget: Option<usize>,
     /// Most work per [`StressSolver::solve`] on multigrid hierarchies under construction,
     /// in block operations (a 6×6 block times a vector, 36 multiply-adds; `None`: an
@@ -227,6 +231,9 @@ pub struct StressSolver {
     hierarchies: Hierarchies,
     /// Rebuilds of the islands so far.
     rebuilds: u64,
+    /// Springs of the spring budget saved by solves that could not afford an island's
+    /// next start or iteration (see [`SolverSettings::spring_budget`]).
+    credit: usize,
     scratch: Scratch,
     /// Per node, the search that last reached it (see `islands.rs`, `detour`).
     seen: Vec<u32>,
@@ -277,6 +284,7 @@ impl StressSolver {
             length_scale,
             hierarchies: Hierarchies::default(),
             rebuilds: 0,
+            credit: 0,
             scratch: Scratch::default(),
             seen: vec![0; n],
             stamp: 0,
@@ -353,7 +361,14 @@ impl StressSolver {
             ..SolveReport::default()
         };
         let mut budget = self.settings.budget.unwrap_or(usize::MAX);
-        let mut springs_left = self.settings.spring_budget.unwrap_or(usize::MAX);
+        // The springs of this solve, and those saved by the solves before it that could not
+        // afford an iteration.
+        let mut springs_left = self
+            .settings
+            .spring_budget
+            .map_or(usize::MAX, |b| b.saturating_add(self.credit));
+        // The next unit of the first island left unfinished for want of springs.
+        let mut owed = 0;
         self.last_solved.clear();
         for (i, fresh) in by_island.into_iter().enumerate() {
             let island = &mut self.islands[i];
@@ -369,13 +384,18 @@ impl StressSolver {
                 island.dynamic.resume = None;
                 island.load_scale = None;
             }
-            // Starts and iterations this island may have: what is left of the springs, at
-            // least one for the first island that works in this solve.
+            // Starts and iterations this island may have: what is left of the springs.
             let bonds = island.cost(&self.hierarchies);
+            // Once an island waits for springs, the islands after it wait too, so that the
+            // springs saved are its.
             let units = match springs_left {
                 usize::MAX => usize::MAX,
-                left => (left / bonds).max(usize::from(report.springs == 0)),
+                _ if owed > 0 => 0,
+                left => left / bonds,
             };
+            if units == 0 && owed == 0 {
+                owed = bonds;
+            }
             if budget == 0 || units == 0 {
                 // Not solved this time: still owed, with its loads kept for it.
                 island.settled = false;
@@ -390,6 +410,9 @@ impl StressSolver {
             let visited = outcome.units.saturating_mul(bonds);
             springs_left = springs_left.saturating_sub(visited);
             report.springs += visited;
+            if !outcome.converged && outcome.units == units && owed == 0 {
+                owed = bonds;
+            }
             let island = &mut self.islands[i];
             island.had_forces = !loads.is_empty();
             island.converged = outcome.converged;
@@ -403,6 +426,13 @@ impl StressSolver {
             report.converged &= outcome.converged;
             self.last_solved.push(i as u32);
         }
+        // An island left unfinished for want of springs has the springs left saved for it,
+        // up to what its next unit costs.
+        self.credit = if self.settings.spring_budget.is_some() {
+            springs_left.min(owed)
+        } else {
+            0
+        };
         report
     }
 
