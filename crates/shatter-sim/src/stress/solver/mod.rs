@@ -67,11 +67,11 @@ pub struct SolverSettings {
     /// for objects of every size: at the World's default
     /// ([`DEFAULT_STRESS_SPRING_BUDGET`](crate::DEFAULT_STRESS_SPRING_BUDGET)) a
     /// 20,000-bond island advances one iteration per solve and a 1,000-bond one 24. An
-    /// island whose next start or iteration costs more than the springs left waits, and
-    /// the springs left are saved for it (up to that cost) and added to the next solve's:
-    /// a 50,000-bond island iterates every second or third solve, so the springs visited
-    /// per solve average to the budget however large the object (a solve visits at most
-    /// the budget plus one unit of the largest island). What is left goes on at the next
+    /// island that cannot afford its next start or iteration waits (and so do the islands
+    /// after it), and the springs left are saved for it (up to that cost) and added to the
+    /// next solve's: a 50,000-bond island iterates every third solve, so the springs
+    /// visited per solve average to at most the budget however large the object (one
+    /// solve visits at most the budget plus one unit). What is left goes on at the next
     /// solve, as with `budget`.
     pub spring_budget: Option<usize>,
     /// Most work per [`StressSolver::solve`] on multigrid hierarchies under construction,
@@ -367,7 +367,7 @@ impl StressSolver {
             .settings
             .spring_budget
             .map_or(usize::MAX, |b| b.saturating_add(self.credit));
-        // The next unit of the first island left unfinished for want of springs.
+        // The next unit of the first island that could not afford one.
         let mut owed = 0;
         self.last_solved.clear();
         for (i, fresh) in by_island.into_iter().enumerate() {
@@ -410,9 +410,6 @@ impl StressSolver {
             let visited = outcome.units.saturating_mul(bonds);
             springs_left = springs_left.saturating_sub(visited);
             report.springs += visited;
-            if !outcome.converged && outcome.units == units && owed == 0 {
-                owed = bonds;
-            }
             let island = &mut self.islands[i];
             island.had_forces = !loads.is_empty();
             island.converged = outcome.converged;
@@ -426,8 +423,8 @@ impl StressSolver {
             report.converged &= outcome.converged;
             self.last_solved.push(i as u32);
         }
-        // An island left unfinished for want of springs has the springs left saved for it,
-        // up to what its next unit costs.
+        // An island that could not afford a unit has the springs left saved for it, up to
+        // what the unit costs.
         self.credit = if self.settings.spring_budget.is_some() {
             springs_left.min(owed)
         } else {
