@@ -63,7 +63,7 @@ pub fn run(args: &BenchScaleArgs, ctx: &Context) -> Result<BenchScaleReport, Cli
         report.steps, report.seconds, report.measured_seconds, report.estimated_seconds
     );
     println!(
-        "{:<9} {:<8} {:>9} {:>14} {:>9} {:>9} {:>9} {:>9} {:>9} {:>10} {:>8} {:>9} {:>7} {:>7} {:>7} {:>8} {:>7}",
+        "{:<9} {:<8} {:>9} {:>14} {:>9} {:>9} {:>9} {:>9} {:>9} {:>10} {:>8} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>8} {:>7}",
         "case",
         "model",
         "fragments",
@@ -76,6 +76,8 @@ pub fn run(args: &BenchScaleArgs, ctx: &Context) -> Result<BenchScaleReport, Cli
         "stress max",
         "solve ms",
         "solve max",
+        "solve cpu",
+        "cpu max",
         "bodies",
         "asleep",
         "still",
@@ -84,7 +86,7 @@ pub fn run(args: &BenchScaleArgs, ctx: &Context) -> Result<BenchScaleReport, Cli
     );
     for r in &report.rows {
         println!(
-            "{:<9} {:<8} {:>9} {:>14} {:>9.1} {:>9.3} {:>9.3} {:>9} {:>9.3} {:>10.3} {:>8.3} {:>9.3} {:>7} {:>7} {:>7} {:>8} {:>7}",
+            "{:<9} {:<8} {:>9} {:>14} {:>9.1} {:>9.3} {:>9.3} {:>9} {:>9.3} {:>10.3} {:>8.3} {:>9.3} {:>9} {:>9} {:>7} {:>7} {:>7} {:>8} {:>7}",
             r.case,
             r.model,
             r.fragments,
@@ -97,6 +99,8 @@ pub fn run(args: &BenchScaleArgs, ctx: &Context) -> Result<BenchScaleReport, Cli
             r.stress_max_ms,
             r.solve_mean_ms,
             r.solve_max_ms,
+            cpu(r.solve_cpu_mean_ms),
+            cpu(r.solve_cpu_max_ms),
             r.bodies,
             r.sleeping_bodies,
             r.still_fragments,
@@ -105,7 +109,7 @@ pub fn run(args: &BenchScaleArgs, ctx: &Context) -> Result<BenchScaleReport, Cli
         );
     }
     println!(
-        "ms: wall clock per step; cpu ms: the stepping thread's CPU per step over the run; stress ms: the step's stress pass (solves, breaks, splits); solve ms: its solves alone"
+        "ms: wall clock per step; cpu ms: the stepping thread's CPU per step over the run; stress ms: the step's stress pass (solves, breaks, splits); solve ms: its solves alone; solve cpu, cpu max: the solves' CPU per step, mean and largest"
     );
     println!(
         "asleep: dynamic bodies Rapier put to sleep; still: fragments whose pose did not change over the last step (sleeping or fixed)"

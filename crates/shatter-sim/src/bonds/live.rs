@@ -59,7 +59,7 @@ impl StressState {
     pub fn new(
         prepared: &Prepared,
         limits: StressLimits,
-        (budget, spring_budget): (Option<usize>, Option<usize>),
+        (budget, spring_budget, build_budget): (Option<usize>, Option<usize>, Option<usize>),
     ) -> Option<StressState> {
         if !prepared.anchored.iter().any(|a| *a) {
             return None;
@@ -92,6 +92,7 @@ impl StressState {
             SolverSettings {
                 budget,
                 spring_budget,
+                build_budget,
                 ..SolverSettings::default()
             },
         );

@@ -108,6 +108,11 @@ impl Scene {
                 &w.stress_spring_budget,
                 &mut settings.stress_spring_budget,
             ),
+            (
+                "world.stress_build_budget",
+                &w.stress_build_budget,
+                &mut settings.stress_build_budget,
+            ),
         ] {
             if let Some(b) = value {
                 *setting = match b.get_ref() {

@@ -30,6 +30,7 @@ impl World {
                 max_debris: s.max_debris,
                 stress_budget: Some(sp(budget_value(s.stress_budget))),
                 stress_spring_budget: Some(sp(budget_value(s.stress_spring_budget))),
+                stress_build_budget: Some(sp(budget_value(s.stress_build_budget))),
                 seconds: None,
             },
             ..SceneFile::default()

@@ -164,44 +164,11 @@ impl Dense {
     /// Factors the matrix whose `(i, j)` 6×6 block `block(i, j)` gives (lower half read).
     /// A pivot that is not positive (a part with no stiffness) is replaced by a tiny one.
     pub fn factor(nodes: usize, block: impl Fn(usize, usize) -> Option<Block6>) -> Dense {
-        let n = 6 * nodes;
-        let mut a = vec![0.0; n * n];
-        for i in 0..nodes {
-            for j in 0..=i {
-                if let Some(b) = block(i, j) {
-                    let parts = [(b.uu, 0, 0), (b.ut, 0, 3), (b.tu, 3, 0), (b.tt, 3, 3)];
-                    for (m, r0, c0) in parts {
-                        let cols = m.to_cols_array_2d();
-                        for (c, col) in cols.iter().enumerate() {
-                            for (r, &v) in col.iter().enumerate() {
-                                let (row, column) = (6 * i + r0 + r, 6 * j + c0 + c);
-                                if column <= row {
-                                    a[row * n + column] = v;
-                                }
-                            }
-                        }
-                    }
-                }
-            }
+        let mut factor = Factoring::new(nodes, block);
+        while !factor.done() {
+            factor.column();
         }
-        let scale = (0..n).map(|i| a[i * n + i].abs()).fold(0.0, f64::max);
-        let floor = (scale * 1e-14).max(f64::MIN_POSITIVE);
-        for j in 0..n {
-            let mut d = a[j * n + j];
-            for k in 0..j {
-                d -= a[j * n + k] * a[j * n + k];
-            }
-            let d = if d > floor { d.sqrt() } else { floor.sqrt() };
-            a[j * n + j] = d;
-            for i in j + 1..n {
-                let mut v = a[i * n + j];
-                for k in 0..j {
-                    v -= a[i * n + k] * a[j * n + k];
-                }
-                a[i * n + j] = v / d;
-            }
-        }
-        Dense { n, l: a }
+        factor.finish()
     }
 
     /// Solves in place; `x` holds `(u, θ)` per node.
@@ -227,6 +194,94 @@ impl Dense {
         for (i, (u, t)) in x.iter_mut().enumerate() {
             *u = DVec3::new(v[6 * i], v[6 * i + 1], v[6 * i + 2]);
             *t = DVec3::new(v[6 * i + 3], v[6 * i + 4], v[6 * i + 5]);
+        }
+    }
+}
+
+/// A dense Cholesky factorisation under way, a column at a time (see [`Dense::factor`]).
+#[derive(Debug, Clone)]
+pub(super) struct Factoring {
+    n: usize,
+    a: Vec<f64>,
+    floor: f64,
+    next: usize,
+}
+
+impl Factoring {
+    /// The matrix whose `(i, j)` 6×6 block `block(i, j)` gives (lower half read), not
+    /// factored yet.
+    pub fn new(nodes: usize, block: impl Fn(usize, usize) -> Option<Block6>) -> Factoring {
+        let n = 6 * nodes;
+        let mut a = vec![0.0; n * n];
+        for i in 0..nodes {
+            for j in 0..=i {
+                if let Some(b) = block(i, j) {
+                    let parts = [(b.uu, 0, 0), (b.ut, 0, 3), (b.tu, 3, 0), (b.tt, 3, 3)];
+                    for (m, r0, c0) in parts {
+                        let cols = m.to_cols_array_2d();
+                        for (c, col) in cols.iter().enumerate() {
+                            for (r, &v) in col.iter().enumerate() {
+                                let (row, column) = (6 * i + r0 + r, 6 * j + c0 + c);
+                                if column <= row {
+                                    a[row * n + column] = v;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let scale = (0..n).map(|i| a[i * n + i].abs()).fold(0.0, f64::max);
+        let floor = (scale * 1e-14).max(f64::MIN_POSITIVE);
+        Factoring {
+            n,
+            a,
+            floor,
+            next: 0,
+        }
+    }
+
+    /// The unknowns (six per node).
+    pub fn size(&self) -> usize {
+        self.n
+    }
+
+    pub fn done(&self) -> bool {
+        self.next >= self.n
+    }
+
+    /// Factors the next column; returns its multiply-adds.
+    pub fn column(&mut self) -> usize {
+        let (n, j, a) = (self.n, self.next, &mut self.a);
+        if j >= n {
+            return 0;
+        }
+        let mut d = a[j * n + j];
+        for k in 0..j {
+            d -= a[j * n + k] * a[j * n + k];
+        }
+        let d = if d > self.floor {
+            d.sqrt()
+        } else {
+            self.floor.sqrt()
+        };
+        a[j * n + j] = d;
+        for i in j + 1..n {
+            let mut v = a[i * n + j];
+            for k in 0..j {
+                v -= a[i * n + k] * a[j * n + k];
+            }
+            a[i * n + j] = v / d;
+        }
+        self.next += 1;
+        (n - j) * (j + 1)
+    }
+
+    /// The factor (all columns factored).
+    pub fn finish(self) -> Dense {
+        Dense {
+            n: self.n,
+            l: self.a,
         }
     }
 }

@@ -84,17 +84,26 @@ impl LocalSprings {
     }
 
     /// `out = K·x`; both have `n + 1` entries, `x[n]` zero (`out[n]` is left zero).
-    pub fn times(&self, x: &[Dof], out: &mut [Dof]) {
-        times(&self.springs, x, out);
+    /// Returns `x·K·x`, the springs' energy (twice it), summed in the same pass.
+    pub fn times(&self, x: &[Dof], out: &mut [Dof]) -> f64 {
+        times(&self.springs, x, out)
     }
 }
 
-/// `out = K·x` over `springs` (see [`LocalSprings::times`]): one pass, each spring once.
-pub(super) fn times(springs: &[LocalSpring], x: &[Dof], out: &mut [Dof]) {
+/// `out = K·x` over `springs` (see [`LocalSprings::times`]): one pass, each spring once;
+/// returns `x·K·x` as `Σ δ·f + Δθ·m` over the springs (their relative motion times their
+/// force and moment), which saves a pass over the vectors.
+pub(super) fn times(springs: &[LocalSpring], x: &[Dof], out: &mut [Dof]) -> f64 {
     out.fill(ZERO);
+    let mut energy = 0.0;
     for s in springs {
         let (a, b) = (s.a as usize, s.b as usize);
-        let (f, m) = s.load(x[a], x[b]);
+        let (xa, xb) = (x[a], x[b]);
+        let d = (xb.0 + xb.1.cross(s.rb)) - (xa.0 + xa.1.cross(s.ra));
+        let f = s.ks * d + (s.dn * s.n.dot(d)) * s.n;
+        let dt = xb.1 - xa.1;
+        let m = s.kb * dt + (s.dt * s.n.dot(dt)) * s.n;
+        energy += d.dot(f) + dt.dot(m);
         let ob = &mut out[b];
         ob.0 += f;
         ob.1 += s.rb.cross(f) + m;
@@ -105,4 +114,5 @@ pub(super) fn times(springs: &[LocalSpring], x: &[Dof], out: &mut [Dof]) {
     if let Some(last) = out.last_mut() {
         *last = ZERO;
     }
+    energy
 }

@@ -39,6 +39,8 @@ mod multigrid_tests;
 #[cfg(test)]
 mod slicing_tests;
 mod solver;
+#[cfg(test)]
+mod split_tests;
 mod spring;
 #[cfg(test)]
 mod tests;

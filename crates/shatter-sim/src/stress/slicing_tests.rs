@@ -12,10 +12,10 @@ use super::solver::springs;
 use super::*;
 use crate::testing::box_grid_fracture;
 
-const G: DVec3 = DVec3::new(0.0, -9.81, 0.0);
+pub(super) const G: DVec3 = DVec3::new(0.0, -9.81, 0.0);
 
 /// A wall of `nx × ny × nz` blocks of 0.2 m, its bottom row anchored.
-fn wall(nx: u32, ny: u32, nz: u32) -> BondGraph {
+pub(super) fn wall(nx: u32, ny: u32, nz: u32) -> BondGraph {
     let f = box_grid_fracture(
         [nx, ny, nz],
         DVec3::new(0.2 * nx as f64, 0.2 * ny as f64, 0.2 * nz as f64),
@@ -25,7 +25,7 @@ fn wall(nx: u32, ny: u32, nz: u32) -> BondGraph {
 
 /// The largest difference of two solvers' stresses over every bond, and the peak stress
 /// of the first.
-fn difference(graph: &BondGraph, a: &StressSolver, b: &StressSolver) -> (f64, f64) {
+pub(super) fn difference(graph: &BondGraph, a: &StressSolver, b: &StressSolver) -> (f64, f64) {
     let (mut worst, mut peak) = (0.0f64, 0.0f64);
     for k in 0..graph.bonds().len() as u32 {
         let (x, y) = (a.stress(k), b.stress(k));
@@ -40,7 +40,7 @@ fn difference(graph: &BondGraph, a: &StressSolver, b: &StressSolver) -> (f64, f6
 
 /// Solves until converged (at most 1,000 solves), `forces` in the first solve only;
 /// returns the reports.
-fn until_converged(
+pub(super) fn until_converged(
     solver: &mut StressSolver,
     graph: &BondGraph,
     broken: &[bool],
@@ -118,6 +118,45 @@ fn the_spring_budget_bounds_every_solve_and_the_sliced_solve_ends_where_the_whol
     }
     // Its start, then its iterations, one per solve.
     assert_eq!(reports.len(), once.iterations + 1);
+    let (worst, peak) = difference(&graph, &whole, &sliced);
+    assert!(worst <= 1e-9 * peak, "{worst:e} of {peak:e}");
+}
+
+#[test]
+fn an_island_dearer_than_the_spring_budget_waits_for_the_springs_saved_and_ends_where_the_whole_solve_does()
+ {
+    let graph = wall(12, 10, 2);
+    let bonds = graph.bonds().len();
+    let broken = vec![false; bonds];
+    let hit = [(12 * 8 + 5, DVec3::new(0.0, 0.0, -4e5))];
+    let mut whole = StressSolver::new(&graph, SolverSettings::default());
+    whole.solve(&graph, &broken, G, &[]);
+    let once = whole.solve(&graph, &broken, G, &hit);
+    // A unit every two or three solves.
+    let budget = bonds * 2 / 5;
+    let mut sliced = StressSolver::new(
+        &graph,
+        SolverSettings {
+            spring_budget: Some(budget),
+            ..SolverSettings::default()
+        },
+    );
+    until_converged(&mut sliced, &graph, &broken, &[]);
+    let reports = until_converged(&mut sliced, &graph, &broken, &hit);
+    let mut visited = 0;
+    for (k, r) in reports.iter().enumerate() {
+        assert!(r.springs == 0 || r.springs == bonds, "{r:?}");
+        visited += r.springs;
+        // On average never over the budget (the first solve had nothing saved).
+        assert!(
+            visited <= budget * (k + 1),
+            "{visited} after {} solves",
+            k + 1
+        );
+    }
+    let units = once.iterations + 1;
+    assert_eq!(visited, units * bonds);
+    assert!(reports.len() >= units * 5 / 2, "{} solves", reports.len());
     let (worst, peak) = difference(&graph, &whole, &sliced);
     assert!(worst <= 1e-9 * peak, "{worst:e} of {peak:e}");
 }

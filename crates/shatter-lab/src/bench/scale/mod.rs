@@ -84,6 +84,12 @@ pub struct ScaleRow {
     pub solve_mean_ms: f64,
     /// Its largest.
     pub solve_max_ms: f64,
+    /// Mean CPU milliseconds of the stepping thread in the step's stress solves
+    /// (`Stats::stress_solve_cpu_ms`), over every step (`None` where the thread's CPU time
+    /// cannot be read).
+    pub solve_cpu_mean_ms: Option<f64>,
+    /// Its largest.
+    pub solve_cpu_max_ms: Option<f64>,
     /// Rigid bodies at the end (fragments' bodies and projectiles; not the ground).
     pub bodies: usize,
     /// Dynamic bodies asleep at the end.
@@ -219,11 +225,22 @@ impl ScaleConfig {
     }
 }
 
-/// CPU time of the calling thread in nanoseconds (Linux: `/proc/thread-self/schedstat`'s
-/// first field), `None` where it cannot be read.
-pub(crate) fn thread_cpu_ns() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
-    text.split_whitespace().next()?.parse().ok()
+/// CPU time of the calling thread in nanoseconds (`CLOCK_THREAD_CPUTIME_ID`), `None`
+/// where it cannot be read.
+#[cfg(unix)]
+pub fn thread_cpu_ns() -> Option<u64> {
+    use rustix::time::{ClockId, clock_gettime};
+    let t = clock_gettime(ClockId::ThreadCPUTime);
+    u64::try_from(t.tv_sec)
+        .ok()?
+        .checked_mul(1_000_000_000)?
+        .checked_add(u64::try_from(t.tv_nsec).ok()?)
+}
+
+/// CPU time of the calling thread: not read on this platform.
+#[cfg(not(unix))]
+pub fn thread_cpu_ns() -> Option<u64> {
+    None
 }
 
 /// Fragments with a body in both lists whose pose is the same in both.
@@ -262,6 +279,9 @@ fn measure(
     let (mut total, mut max) = (0.0f64, 0.0f64);
     let (mut stress_total, mut stress_max) = (0.0f64, 0.0f64);
     let (mut solve_total, mut solve_max) = (0.0f64, 0.0f64);
+    let (mut solve_cpu_total, mut solve_cpu_max) = (0.0f64, 0.0f64);
+    let mut solve_cpu_read = true;
+    world.set_cpu_clock(Some(thread_cpu_ns));
     let mut before = if steps == 1 {
         world.fragment_poses(id)
     } else {
@@ -278,6 +298,13 @@ fn measure(
         let solve = world.stats().stress_solve_ms;
         solve_total += solve;
         solve_max = solve_max.max(solve);
+        match world.stats().stress_solve_cpu_ms {
+            Some(cpu) => {
+                solve_cpu_total += cpu;
+                solve_cpu_max = solve_cpu_max.max(cpu);
+            }
+            None => solve_cpu_read = false,
+        }
         if done + 1 == steps {
             before = world.fragment_poses(id);
         }
@@ -302,6 +329,9 @@ fn measure(
         stress_max_ms: stress_max,
         solve_mean_ms: solve_total / steps as f64,
         solve_max_ms: solve_max,
+        solve_cpu_mean_ms: (solve_cpu_read && thread_cpu_ns().is_some())
+            .then(|| solve_cpu_total / steps as f64),
+        solve_cpu_max_ms: (solve_cpu_read && thread_cpu_ns().is_some()).then_some(solve_cpu_max),
         bodies: stats.bodies,
         sleeping_bodies: stats.sleeping_bodies,
         still_fragments: unchanged(&before, &world.fragment_poses(id)),

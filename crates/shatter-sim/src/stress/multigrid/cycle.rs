@@ -36,6 +36,15 @@ impl<R: Real> Block<R> {
             R::mv(&self.tu, u) + R::mv(&self.tt, t),
         )
     }
+
+    /// The transpose applied: `[[uuᵀ, tuᵀ], [utᵀ, ttᵀ]]·(u, θ)`.
+    #[inline]
+    fn apply_transpose(&self, (u, t): Pair<R>) -> Pair<R> {
+        (
+            R::mtv(&self.uu, u) + R::mtv(&self.tu, t),
+            R::mtv(&self.ut, u) + R::mtv(&self.tt, t),
+        )
+    }
 }
 
 /// One level as the preconditioner reads it.
@@ -49,51 +58,53 @@ pub(super) struct Level<R: Real> {
     upper: Vec<u32>,
     cols: Vec<u32>,
     offd: Vec<Block<R>>,
-    /// `P` by rows (empty on the last level), and its blocks transposed for `Pᵀ`.
+    /// `P` by rows (empty on the last level); `Pᵀ` is applied through its blocks
+    /// transposed on the fly (storing them too doubled what an application reads).
     p_start: Vec<u32>,
     p_cols: Vec<u32>,
     p: Vec<Block<R>>,
-    pt: Vec<Block<R>>,
 }
 
 impl<R: Real> Level<R> {
-    /// The level `l` of `setup`.
-    pub fn of(l: usize, setup: &setup::Level) -> Level<R> {
-        let blocks = |v: &[Block6]| v.iter().map(Block::of).collect::<Vec<_>>();
-        let fine = l == 0;
+    /// An empty level `l` (the finest for `l == 0`), to be filled row by row with
+    /// [`Level::push_row`].
+    pub fn start(l: usize) -> Level<R> {
         Level {
-            diag_inv: blocks(&setup.diag_inv),
-            row_start: if fine {
-                Vec::new()
-            } else {
-                setup.row_start.clone()
-            },
-            upper: if fine {
-                Vec::new()
-            } else {
-                (0..setup.len())
-                    .map(|i| {
-                        let row = setup.row(i);
-                        let above = setup.cols[row.clone()].partition_point(|&j| (j as usize) < i);
-                        (row.start + above) as u32
-                    })
-                    .collect()
-            },
-            cols: if fine { Vec::new() } else { setup.cols.clone() },
-            offd: if fine {
-                Vec::new()
-            } else {
-                blocks(&setup.offd)
-            },
-            p_start: setup.p_start.clone(),
-            p_cols: setup.p_cols.clone(),
-            p: blocks(&setup.p_blocks),
-            pt: setup
-                .p_blocks
-                .iter()
-                .map(|b| Block::of(&b.transpose()))
-                .collect(),
+            diag_inv: Vec::new(),
+            row_start: if l == 0 { Vec::new() } else { vec![0] },
+            upper: Vec::new(),
+            cols: Vec::new(),
+            offd: Vec::new(),
+            p_start: vec![0],
+            p_cols: Vec::new(),
+            p: Vec::new(),
         }
+    }
+
+    /// Appends row `i` of `setup` (the rows before it appended); returns the blocks
+    /// converted.
+    pub fn push_row(&mut self, setup: &setup::Level, i: usize) -> usize {
+        self.diag_inv.push(Block::of(&setup.diag_inv[i]));
+        let mut blocks = 1;
+        if !self.row_start.is_empty() {
+            let row = setup.row(i);
+            let above = setup.cols[row.clone()].partition_point(|&j| (j as usize) < i);
+            self.upper.push((row.start + above) as u32);
+            self.cols.extend_from_slice(&setup.cols[row.clone()]);
+            self.offd
+                .extend(setup.offd[row.clone()].iter().map(Block::of));
+            self.row_start.push(self.cols.len() as u32);
+            blocks += row.len();
+        }
+        if !setup.p_start.is_empty() {
+            let row = setup.p_row(i);
+            self.p_cols.extend_from_slice(&setup.p_cols[row.clone()]);
+            self.p
+                .extend(setup.p_blocks[row.clone()].iter().map(Block::of));
+            self.p_start.push(self.p_cols.len() as u32);
+            blocks += row.len();
+        }
+        blocks
     }
 
     pub fn len(&self) -> usize {
@@ -167,12 +178,35 @@ impl<R: Real> Level<R> {
         }
     }
 
+    /// `out += Pᵀ·e_i·f` for row `i`'s `f`.
+    #[inline]
+    fn restrict_row(&self, i: usize, f: Pair<R>, out: &mut [Pair<R>]) {
+        for k in self.p_row(i) {
+            let (u, t) = self.p[k].apply_transpose(f);
+            let o = &mut out[self.p_cols[k] as usize];
+            o.0 += u;
+            o.1 += t;
+        }
+    }
+
+    /// `x_i += (P·xc)_i`.
+    #[inline]
+    fn prolong_row(&self, i: usize, xc: &[Pair<R>], x: &mut [Pair<R>]) {
+        let (mut u, mut t) = x[i];
+        for k in self.p_row(i) {
+            let (du, dt) = self.p[k].apply(xc[self.p_cols[k] as usize]);
+            u += du;
+            t += dt;
+        }
+        x[i] = (u, t);
+    }
+
     /// `out = Pᵀ·f`.
     pub fn restrict(&self, f: &[Pair<R>], out: &mut [Pair<R>]) {
         out.fill((R::ZERO, R::ZERO));
         for (i, &fi) in f.iter().enumerate().take(self.len()) {
             for k in self.p_row(i) {
-                let (u, t) = self.pt[k].apply(fi);
+                let (u, t) = self.p[k].apply_transpose(fi);
                 let o = &mut out[self.p_cols[k] as usize];
                 o.0 += u;
                 o.1 += t;
@@ -227,11 +261,12 @@ impl<R: Real> Cycle<R> {
             work.levels
                 .resize_with(self.levels.len(), LevelWork::default);
         }
+        // Grown only: islands with hierarchies of other sizes share the vectors, and every
+        // pass reads the first `len()` entries of its level's.
         for (w, level) in work.levels.iter_mut().zip(&self.levels) {
             let n = level.len();
             for v in [&mut w.b, &mut w.x, &mut w.t] {
-                if v.len() != n {
-                    v.clear();
+                if v.len() < n {
                     v.resize(n, (R::ZERO, R::ZERO));
                 }
             }
@@ -239,8 +274,8 @@ impl<R: Real> Cycle<R> {
     }
 
     /// `z = ω·D⁻¹·r + P·V(Pᵀ·r)`, `V` one V-cycle on the coarse levels; `r` and `z` in
-    /// `f64` with the anchored slot (`r`'s is ignored, `z`'s left zero).
-    pub fn apply(&self, r: &[Dof], z: &mut [Dof], work: &mut Work<R>) {
+    /// `f64` with the anchored slot (`r`'s is ignored, `z`'s left zero). Returns `r·z`.
+    pub fn apply(&self, r: &[Dof], z: &mut [Dof], work: &mut Work<R>) -> f64 {
         self.fit(work);
         let level = &self.levels[0];
         let n = level.len();
@@ -261,10 +296,78 @@ impl<R: Real> Cycle<R> {
             self.cycle(1, coarse, &mut work.dense);
             level.prolong_add(&coarse[0].x, &mut w.x);
         }
-        for (z, x) in z[..n].iter_mut().zip(&w.x) {
+        let mut rz = 0.0;
+        for ((z, x), r) in z[..n].iter_mut().zip(&w.x).zip(r) {
             *z = (R::to_f64(x.0), R::to_f64(x.1));
+            rz += r.0.dot(z.0) + r.1.dot(z.1);
         }
         z[n] = (glam::DVec3::ZERO, glam::DVec3::ZERO);
+        rz
+    }
+
+    /// [`Cycle::apply`] restricted to the finest rows `rows` (ascending): `r` and `z` are
+    /// an island's vectors (its anchored slot last), `r[l]` the residual on row `rows[l]`
+    /// and zero on the rows not listed, `z[l]` the correction read back on it. The same as
+    /// `apply` on the vectors spread over every row, `Sᵀ·M·S` for the selection `S`, at
+    /// the cost of the listed rows and the coarse levels. Returns `r·z`.
+    pub fn apply_rows(&self, rows: &[u32], r: &[Dof], z: &mut [Dof], work: &mut Work<R>) -> f64 {
+        self.fit(work);
+        let level = &self.levels[0];
+        let (fine, coarse) = work.levels.split_at_mut(1);
+        let w = &mut fine[0];
+        if self.levels.len() == 1 {
+            w.b[..level.len()].fill((R::ZERO, R::ZERO));
+            for (&i, r) in rows.iter().zip(r) {
+                w.b[i as usize] = (R::vector(r.0), R::vector(r.1));
+            }
+            self.bottom(&w.b, &mut w.x, &mut work.dense);
+        } else {
+            let omega = R::scalar(OMEGA);
+            let out = &mut coarse[0].b;
+            out.fill((R::ZERO, R::ZERO));
+            for (&i, r) in rows.iter().zip(r) {
+                let i = i as usize;
+                let b = (R::vector(r.0), R::vector(r.1));
+                let (u, t) = level.diag_inv[i].apply(b);
+                w.x[i] = (omega * u, omega * t);
+                level.restrict_row(i, b, out);
+            }
+            self.cycle(1, coarse, &mut work.dense);
+            for &i in rows {
+                level.prolong_row(i as usize, &coarse[0].x, &mut w.x);
+            }
+        }
+        let mut rz = 0.0;
+        for ((z, &i), r) in z.iter_mut().zip(rows).zip(r) {
+            let x = w.x[i as usize];
+            *z = (R::to_f64(x.0), R::to_f64(x.1));
+            rz += r.0.dot(z.0) + r.1.dot(z.1);
+        }
+        z[rows.len()] = (glam::DVec3::ZERO, glam::DVec3::ZERO);
+        rz
+    }
+
+    /// Block operations of one [`Cycle::apply`] on the coarse levels (all but the
+    /// finest), and of the finest level's part per row (its inverse diagonal, its rows of
+    /// `P` and `Pᵀ`), the mean over its rows.
+    pub fn cost(&self) -> (usize, f64) {
+        let mut coarse = 0;
+        for (l, level) in self.levels.iter().enumerate().skip(1) {
+            let n = level.len();
+            let last = l + 1 == self.levels.len();
+            coarse += if last {
+                match &self.coarse {
+                    Some(_) => (6 * n) * (6 * n) / 18 + n,
+                    None => 2 * (level.offd.len() + n),
+                }
+            } else {
+                // Forward sweep and residual, backward sweep, Pᵀ and P.
+                2 * (level.offd.len() + n) + 2 * level.p_cols.len()
+            };
+        }
+        let fine = &self.levels[0];
+        let per_row = 1.0 + 2.0 * fine.p_cols.len() as f64 / fine.len().max(1) as f64;
+        (coarse, per_row)
     }
 
     /// The coarsest level: `x = K⁻¹·b` densely, or two Gauss-Seidel sweeps.
@@ -273,14 +376,18 @@ impl<R: Real> Cycle<R> {
         match &self.coarse {
             Some(factor) => {
                 dense.clear();
-                dense.extend(b.iter().map(|v| (R::to_f64(v.0), R::to_f64(v.1))));
+                dense.extend(
+                    b[..level.len()]
+                        .iter()
+                        .map(|v| (R::to_f64(v.0), R::to_f64(v.1))),
+                );
                 factor.solve(dense);
                 for (x, d) in x.iter_mut().zip(dense.iter()) {
                     *x = (R::vector(d.0), R::vector(d.1));
                 }
             }
             None => {
-                x.fill((R::ZERO, R::ZERO));
+                x[..level.len()].fill((R::ZERO, R::ZERO));
                 level.sweep(x, b, true);
                 level.sweep(x, b, false);
             }

@@ -27,6 +27,7 @@
 //! Anchored nodes are not unknowns: their blocks are dropped (their springs still add to
 //! the free nodes' diagonals).
 
+mod build;
 mod cycle;
 pub(super) mod real;
 mod setup;
@@ -35,8 +36,9 @@ mod update;
 use glam::DVec3;
 
 use crate::stress::local::{Dof, LocalSprings};
+pub(in crate::stress) use build::Build;
+use cycle::Cycle;
 pub(super) use cycle::Work;
-use cycle::{Cycle, Level};
 use real::{F32, Real};
 
 /// The hierarchy of one anchored island, applied in precision `R`.
@@ -52,32 +54,27 @@ impl<R: Real> Multigrid<R> {
     /// The hierarchy of an island's springs (free nodes `0..n`, see [`LocalSprings`])
     /// with the free nodes' positions `pos`.
     pub fn new(springs: &LocalSprings, pos: &[DVec3]) -> Multigrid<R> {
-        let (mut levels, coarse) = setup::build(springs, pos);
-        let cycle = Cycle {
-            levels: levels
-                .iter()
-                .enumerate()
-                .map(|(l, level)| Level::of(l, level))
-                .collect(),
-            coarse,
-        };
-        if !cfg!(test) {
-            // Neither the cycle nor an update reads them.
-            let fine = &mut levels[0];
-            fine.offd = Vec::new();
-            fine.cols = Vec::new();
-            fine.row_start = Vec::new();
-        }
-        Multigrid {
-            cycle,
-            setup: levels,
-        }
+        let mut build = Build::new(springs, pos);
+        build.advance(usize::MAX);
+        build.finish()
     }
 
     /// `z ≈ K⁻¹·r` (see the module's doc). `r` and `z` have the finest level's nodes and
-    /// the anchored slot (`r`'s is ignored, `z`'s left zero).
-    pub fn apply(&self, r: &[Dof], z: &mut [Dof], work: &mut Work<R>) {
-        self.cycle.apply(r, z, work);
+    /// the anchored slot (`r`'s is ignored, `z`'s left zero). Returns `r·z`.
+    pub fn apply(&self, r: &[Dof], z: &mut [Dof], work: &mut Work<R>) -> f64 {
+        self.cycle.apply(r, z, work)
+    }
+
+    /// [`Multigrid::apply`] restricted to the finest rows `rows` (see
+    /// [`Cycle::apply_rows`]): an island's preconditioner from a hierarchy built for more
+    /// nodes than it has.
+    pub fn apply_rows(&self, rows: &[u32], r: &[Dof], z: &mut [Dof], work: &mut Work<R>) -> f64 {
+        self.cycle.apply_rows(rows, r, z, work)
+    }
+
+    /// Block operations of one application: on the coarse levels, and per finest row.
+    pub fn cost(&self) -> (usize, f64) {
+        self.cycle.cost()
     }
 }
 

@@ -34,6 +34,8 @@ pub(in crate::stress) trait Real:
     fn matrix(m: DMat3) -> Self::M;
     /// `m·v`.
     fn mv(m: &Self::M, v: Self::V) -> Self::V;
+    /// `mᵀ·v`.
+    fn mtv(m: &Self::M, v: Self::V) -> Self::V;
 }
 
 /// Single precision, SIMD vectors.
@@ -71,6 +73,10 @@ impl Real for F32 {
     fn mv(m: &Mat3A, v: Vec3A) -> Vec3A {
         m.mul_vec3a(v)
     }
+    #[inline]
+    fn mtv(m: &Mat3A, v: Vec3A) -> Vec3A {
+        m.transpose().mul_vec3a(v)
+    }
 }
 
 #[cfg(test)]
@@ -99,5 +105,9 @@ impl Real for F64 {
     #[inline]
     fn mv(m: &DMat3, v: DVec3) -> DVec3 {
         *m * v
+    }
+    #[inline]
+    fn mtv(m: &DMat3, v: DVec3) -> DVec3 {
+        m.transpose() * v
     }
 }

@@ -3,7 +3,8 @@
 
 use glam::{DMat3, DVec3};
 
-use super::islands::{Hierarchy, IslandState, Part};
+use super::hierarchies::Hierarchy;
+use super::islands::{IslandState, Part};
 use super::{Outcome, StressSolver};
 use crate::stress::local::{Dof, LocalSprings, ZERO};
 use crate::stress::multigrid::Work;
@@ -22,20 +23,14 @@ pub(super) struct Scratch {
     pre: PreWork,
 }
 
-/// The preconditioner's vectors.
-#[derive(Debug, Clone, Default)]
-struct PreWork {
-    /// The multigrid's.
-    work: Work<F32>,
-    /// Residual and correction in a kept hierarchy's order.
-    hr: Vec<Dof>,
-    hz: Vec<Dof>,
-}
+/// The preconditioner's vectors: the multigrid's.
+type PreWork = Work<F32>;
 
 /// The preconditioner of one island.
 struct Pre<'a> {
     multigrid: Option<&'a Hierarchy>,
-    map: Option<&'a [u32]>,
+    /// With a hierarchy built for more nodes: the island's rows in it.
+    rows: Option<&'a [u32]>,
     jacobi: &'a [(DMat3, DMat3)],
 }
 
@@ -68,7 +63,7 @@ impl StressSolver {
             gravity,
             dynamic,
             multigrid,
-            map,
+            rows,
             jacobi,
             load_scale,
             ..
@@ -85,8 +80,8 @@ impl StressSolver {
             }
         };
         let pre = Pre {
-            multigrid: multigrid.as_deref(),
-            map: map.as_deref(),
+            multigrid: multigrid.and_then(|k| self.hierarchies.get(k)),
+            rows: rows.as_deref(),
             jacobi,
         };
         if !loaded && gravity.converged && gravity.residual > tolerance * gravity.scale {
@@ -187,12 +182,22 @@ impl StressSolver {
             .sqrt()
     }
 
+    /// The mass of free node `v` of an island, zero if it was dropped from it (see
+    /// `detach.rs`): it carries no load.
+    fn live_mass(&self, v: u32) -> f64 {
+        if self.local[v as usize] == u32::MAX {
+            0.0
+        } else {
+            self.mass[v as usize]
+        }
+    }
+
     /// Gravity's loads on the free nodes `free`: `m·g`, then the anchored slot.
     fn gravity_loads(&self, free: &[u32], f: &mut Vec<Dof>) {
         f.clear();
         f.extend(
             free.iter()
-                .map(|&v| (self.mass[v as usize] * self.gravity, DVec3::ZERO)),
+                .map(|&v| (self.live_mass(v) * self.gravity, DVec3::ZERO)),
         );
         f.push(ZERO);
     }
@@ -215,13 +220,13 @@ impl StressSolver {
     /// d'Alembert forces of the island's rigid acceleration under the dynamic forces, so
     /// they have no net force or moment left for the anchors.
     fn relieve(&self, free: &[u32], dynamic: &[(u32, DVec3)], f: &mut [Dof]) {
-        let mass: f64 = free.iter().map(|&v| self.mass[v as usize]).sum();
+        let mass: f64 = free.iter().map(|&v| self.live_mass(v)).sum();
         if mass <= 0.0 {
             return;
         }
         let c = free
             .iter()
-            .map(|&v| self.mass[v as usize] * self.centroid[v as usize])
+            .map(|&v| self.live_mass(v) * self.centroid[v as usize])
             .sum::<DVec3>()
             / mass;
         let (mut force, mut torque) = (DVec3::ZERO, DVec3::ZERO);
@@ -233,14 +238,14 @@ impl StressSolver {
         let mut inertia = DMat3::ZERO;
         for &v in free {
             let r = self.centroid[v as usize] - c;
-            let m = self.mass[v as usize];
+            let m = self.live_mass(v);
             inertia += (DMat3::from_diagonal(DVec3::splat(r.length_squared())) - outer(r, r)) * m;
         }
         let a = force / mass;
         let alpha = invert(inertia) * torque;
         for (k, &v) in free.iter().enumerate() {
             let r = self.centroid[v as usize] - c;
-            f[k].0 -= self.mass[v as usize] * (a + alpha.cross(r));
+            f[k].0 -= self.live_mass(v) * (a + alpha.cross(r));
         }
     }
 }
@@ -309,8 +314,7 @@ fn run(
                 break;
             }
             iterations += 1;
-            springs.times(&part.p, &mut scratch.q);
-            let pq = dot(&part.p[..n], &scratch.q[..n]);
+            let pq = springs.times(&part.p, &mut scratch.q);
             if !(pq > 0.0 && pq.is_finite()) {
                 break;
             }
@@ -353,46 +357,25 @@ fn run(
     }
 }
 
-/// `z = M⁻¹·r` on the island's free nodes (its multigrid's W-cycle, or block Jacobi);
-/// returns `r·z`.
-fn precondition(pre: &Pre<'_>, r: &[Dof], z: &mut [Dof], w: &mut PreWork) -> f64 {
-    let PreWork { work, hr, hz } = w;
-    let n = r.len() - 1;
-    match (pre.multigrid, pre.map) {
+/// `z = M⁻¹·r` on the island's free nodes (its multigrid, or block Jacobi); returns `r·z`
+/// (summed as `z` is written).
+fn precondition(pre: &Pre<'_>, r: &[Dof], z: &mut [Dof], work: &mut PreWork) -> f64 {
+    match (pre.multigrid, pre.rows) {
         (Some(h), None) => h.multigrid.apply(r, z, work),
-        (Some(h), Some(map)) => {
-            // On the hierarchy's nodes: the residual on this island's, zero on those it
-            // lost (see `Hierarchy`).
-            hr.clear();
-            hr.extend(
-                map.iter()
-                    .map(|&l| if l == u32::MAX { ZERO } else { r[l as usize] }),
-            );
-            hr.push(ZERO);
-            hz.resize(hr.len(), ZERO);
-            h.multigrid.apply(hr, hz, work);
-            for (&l, &v) in map.iter().zip(hz.iter()) {
-                if l != u32::MAX {
-                    z[l as usize] = v;
-                }
-            }
-            z[n] = ZERO;
-        }
+        // On the island's rows of the hierarchy: the residual there, zero on the rows it
+        // lost (see `Hierarchy`).
+        (Some(h), Some(rows)) => h.multigrid.apply_rows(rows, r, z, work),
         (None, _) => {
+            let n = r.len() - 1;
+            let mut rz = 0.0;
             for ((z, r), (pu, pt)) in z.iter_mut().zip(r).zip(pre.jacobi) {
                 *z = (*pu * r.0, *pt * r.1);
+                rz += r.0.dot(z.0) + r.1.dot(z.1);
             }
             z[n] = ZERO;
+            rz
         }
     }
-    dot(&r[..n], &z[..n])
-}
-
-fn dot(a: &[Dof], b: &[Dof]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| x.0.dot(y.0) + x.1.dot(y.1))
-        .sum()
 }
 
 /// `|v|` with moments weighted by `weight` (one over the length scale squared).

@@ -2,15 +2,15 @@
 //! load cases each solves (gravity, and the dynamic forces on top of it), and their
 //! rebuild when bonds break.
 
-use std::sync::Arc;
-
 use glam::{DMat3, DVec3};
 
+use super::hierarchies::{Hierarchies, Hierarchy};
 use super::{Preconditioner, StressSolver, merge_strongest};
 use crate::stress::graph::BondGraph;
 use crate::stress::limits::BondStress;
 use crate::stress::local::{Dof, LocalSpring, LocalSprings, ZERO};
-use crate::stress::multigrid::Multigrid;
+use crate::stress::multigrid::real::F32;
+use crate::stress::multigrid::{Build, Multigrid};
 use crate::stress::spring::{invert, outer, skew};
 
 /// One load case's solution on an island, and its conjugate gradients.
@@ -74,35 +74,40 @@ pub(super) struct IslandState {
     /// The norm of all its loads, gravity's and the dynamic forces' (relieved), while it
     /// has dynamic forces; `None` when they changed since it was computed.
     pub load_scale: Option<f64>,
-    /// Its multigrid preconditioner (with [`Preconditioner::Multigrid`]); after bonds
-    /// broke, possibly the hierarchy of the island it split from (see [`Hierarchy`]).
-    pub multigrid: Option<Arc<Hierarchy>>,
-    /// With a kept hierarchy: per node of the hierarchy, its local index here
-    /// (`u32::MAX`: not in this island).
-    pub map: Option<Vec<u32>>,
-    /// With [`Preconditioner::BlockJacobi`]: per local node, the inverses of its
-    /// displacement and rotation blocks.
+    /// Its multigrid hierarchy (with [`Preconditioner::Multigrid`]), an index into the
+    /// solver's hierarchies; after bonds broke, possibly the hierarchy of the island it
+    /// split from (see [`Hierarchy`]).
+    pub multigrid: Option<u32>,
+    /// With a hierarchy built for more nodes: per local node, its row in the hierarchy
+    /// (ascending).
+    pub rows: Option<Vec<u32>>,
+    /// Its own hierarchy, under construction (see [`SolverSettings::build_budget`](super::SolverSettings::build_budget)).
+    pub build: Option<Box<Build<F32>>>,
+    /// Springs broken since `build` began (its numbering), taken off when it is done.
+    pub build_removed: Vec<LocalSpring>,
+    /// With [`Preconditioner::BlockJacobi`], or while its first hierarchy is built: per
+    /// local node, the inverses of its displacement and rotation blocks.
     pub jacobi: Vec<(DMat3, DMat3)>,
 }
 
-/// A multigrid hierarchy and the free nodes it was built on, in its order.
-///
-/// When bonds break, the hierarchy is kept the Galerkin hierarchy of the springs left:
-/// their stiffness is taken off every level (see `multigrid/update.rs`), a few blocks
-/// where building it afresh costs about a hundred milliseconds at 20,000 bonds. An island
-/// whose free nodes all come from one island, and are at least half of it, keeps that
-/// island's hierarchy: the residual is restricted to its nodes (zero on the others) and
-/// the correction read back on them, `M' = Sᵀ·M·S` for the selection `S`, which is still
-/// symmetric and positive definite, so the conjugate gradients still converge to the
-/// solution of the island's own springs. Since no spring joins it to the nodes it lost,
-/// `M` is close to a block diagonal of the two parts and `M'` close to the island's own
-/// preconditioner. A smaller island gets a hierarchy of its own (cheaper per iteration
-/// than the big one, and quick to build).
-#[derive(Debug, Clone)]
-pub(super) struct Hierarchy {
-    pub multigrid: Multigrid,
-    /// The free nodes of the island it was built for (indices into the graph).
-    pub nodes: Vec<u32>,
+impl IslandState {
+    /// Its conjugate gradients start again from their solutions (its preconditioner
+    /// changed).
+    pub fn restart(&mut self) {
+        for part in [&mut self.gravity, &mut self.dynamic] {
+            part.resume = None;
+        }
+    }
+
+    /// Springs an iteration (or a start) costs about as much as: its bonds, and the coarse
+    /// levels of a hierarchy built for more nodes (see [`Hierarchy::coarse_springs`]).
+    pub fn cost(&self, hierarchies: &Hierarchies) -> usize {
+        let coarse = match (self.multigrid, &self.rows) {
+            (Some(k), Some(_)) => hierarchies.get(k).map_or(0, |h| h.coarse_springs),
+            _ => 0,
+        };
+        self.bonds.len().max(1) + coarse
+    }
 }
 
 /// Nodes a search for a detour around a broken bond visits before it gives up (and the
@@ -111,11 +116,17 @@ const DETOUR: usize = 256;
 
 impl StressSolver {
     /// Brings the islands to the bond mask `broken`. When bonds only broke and each still
-    /// has a detour between its ends (no island split), the islands stay: the broken
-    /// springs are zeroed and taken off their multigrid hierarchies (see
-    /// `multigrid/update.rs`); otherwise they are rebuilt ([`StressSolver::rebuild`]).
+    /// has a detour between its ends, or cut off a small piece without an anchor, the
+    /// islands stay: the broken springs (and the pieces') are zeroed and taken off their
+    /// multigrid hierarchies (see `multigrid/update.rs`), the pieces' nodes dropped;
+    /// otherwise they are rebuilt ([`StressSolver::rebuild`]).
     /// Returns how many hierarchies were built.
-    pub(super) fn update_topology(&mut self, graph: &BondGraph, broken: &[bool]) -> usize {
+    pub(super) fn update_topology(
+        &mut self,
+        graph: &BondGraph,
+        broken: &[bool],
+        at_once: bool,
+    ) -> usize {
         let newly = self.topology.as_deref().and_then(|old| {
             (old.len() == broken.len() && old.iter().zip(broken).all(|(o, n)| !o || *n)).then(
                 || {
@@ -125,18 +136,28 @@ impl StressSolver {
                 },
             )
         });
-        // A bond outside the anchored islands changes none of them.
-        if let Some(newly) = newly
-            && newly.iter().all(|&b| {
-                self.node_island[graph.bonds()[b as usize].a as usize] == u32::MAX
+        // A bond outside the anchored islands changes none of them; a bond with a detour
+        // leaves its island whole; one whose side is a small piece without an anchor
+        // drops that piece from its island (see `detach.rs`).
+        if let Some(newly) = newly {
+            let mut pieces = Vec::new();
+            let in_place = newly.iter().all(|&b| {
+                let bond = &graph.bonds()[b as usize];
+                self.node_island[bond.a as usize] == u32::MAX
                     || self.detour(graph, broken, b)
-            })
-        {
-            self.remove_bonds(&newly);
-            self.topology = Some(broken.to_vec());
-            return 0;
+                    || self.loose_piece(graph, broken, bond.a, &mut pieces)
+                    || self.loose_piece(graph, broken, bond.b, &mut pieces)
+            });
+            if in_place {
+                let mut bonds = newly;
+                bonds.extend(self.piece_bonds(graph, broken, &pieces));
+                self.remove_bonds(&bonds);
+                self.drop_nodes(&pieces);
+                self.topology = Some(broken.to_vec());
+                return 0;
+            }
         }
-        self.rebuild(graph, broken, self.topology.clone().as_deref())
+        self.rebuild(graph, broken, self.topology.clone().as_deref(), at_once)
     }
 
     /// Whether bond `b`'s ends are still joined by intact bonds (searching at most
@@ -176,7 +197,8 @@ impl StressSolver {
     }
 
     /// Zeroes the springs of the bonds `broken` (in place, islands unchanged), takes them
-    /// off the hierarchies, and has their islands solved again.
+    /// off the hierarchies (and queues them for a hierarchy under construction), and has
+    /// their islands solved again.
     fn remove_bonds(&mut self, broken: &[u32]) {
         let mut by_island: Vec<(u32, u32)> = broken
             .iter()
@@ -187,9 +209,12 @@ impl StressSolver {
             })
             .collect();
         by_island.sort_unstable();
+        let mut changed = Vec::new();
         for group in by_island.chunk_by(|x, y| x.0 == y.0) {
             let island = &mut self.islands[group[0].0 as usize];
+            let h = island.multigrid.and_then(|k| self.hierarchies.get(k));
             let mut removed = Vec::with_capacity(group.len());
+            let mut local = Vec::with_capacity(group.len());
             for &(_, b) in group {
                 self.stress[b as usize] = BondStress::default();
                 let Ok(k) = island.bonds.binary_search(&b) else {
@@ -198,7 +223,8 @@ impl StressSolver {
                 let spring = island.springs.springs[k];
                 let s = &mut island.springs.springs[k];
                 (s.ks, s.dn, s.kb, s.dt) = (0.0, 0.0, 0.0, 0.0);
-                removed.push(match (&island.map, &island.multigrid) {
+                local.push(spring);
+                removed.push(match (&island.rows, h) {
                     (Some(_), Some(h)) => {
                         let graph_spring = &self.springs[b as usize];
                         LocalSpring::new(
@@ -210,8 +236,17 @@ impl StressSolver {
                     _ => spring,
                 });
             }
-            if let Some(h) = island.multigrid.as_mut() {
-                Arc::make_mut(h).multigrid.remove_springs(&removed);
+            if island.build.is_some() {
+                island.build_removed.extend_from_slice(&local);
+            }
+            if let Some(k) = island.multigrid
+                && let Some(h) = self.hierarchies.get_mut(k)
+            {
+                h.multigrid.remove_springs(&removed);
+                changed.push(k);
+            }
+            if !island.jacobi.is_empty() {
+                island.jacobi = jacobi_blocks(&island.springs);
             }
             for part in [&mut island.gravity, &mut island.dynamic] {
                 part.converged = false;
@@ -221,17 +256,39 @@ impl StressSolver {
             island.settled = false;
             island.converged = false;
         }
+        // Other islands that use a hierarchy changed here start their conjugate gradients
+        // again with it.
+        for island in &mut self.islands {
+            if island.multigrid.is_some_and(|k| changed.contains(&k)) {
+                island.restart();
+            }
+        }
     }
 
     /// Rebuilds the anchored islands and their preconditioner from the bond mask; the
-    /// last solutions stay as the warm start. Returns how many hierarchies it built.
-    fn rebuild(&mut self, graph: &BondGraph, broken: &[bool], old_mask: Option<&[bool]>) -> usize {
+    /// last solutions stay as the warm start. An island split from one with a hierarchy
+    /// uses that hierarchy restricted to its nodes (see [`Hierarchy`]) and, if it has
+    /// less than half of its nodes, gets its own: built here when `at_once` or without a
+    /// [`SolverSettings::build_budget`](super::SolverSettings::build_budget), else a slice per solve (an island without a
+    /// hierarchy to use meanwhile is preconditioned by block Jacobi). Returns how many
+    /// hierarchies it built.
+    fn rebuild(
+        &mut self,
+        graph: &BondGraph,
+        broken: &[bool],
+        old_mask: Option<&[bool]>,
+        at_once: bool,
+    ) -> usize {
         let mut built = 0;
-        // Hierarchies that islands split from this mask may keep: only bonds broke since
+        self.rebuilds += 1;
+        let sliced = self.settings.build_budget.is_some() && !at_once;
+        // Hierarchies that islands split from this mask may use: only bonds broke since
         // (no bond came back, no island grew).
         let only_broke = old_mask.is_some_and(|t| {
             t.len() == broken.len() && t.iter().zip(broken).all(|(o, n)| !o || *n)
         });
+        // Per hierarchy, whether the springs broken since were taken off it.
+        let mut updated = vec![false; self.hierarchies.len()];
         let old_island = std::mem::take(&mut self.node_island);
         let nodes = self.mass.len();
         // The last solutions per graph node, for the warm start.
@@ -285,73 +342,52 @@ impl StressSolver {
                 continue;
             }
             let springs = LocalSprings::new(&self.springs, &island.bonds, &self.local, free.len());
-            let jacobi = if self.settings.preconditioner == Preconditioner::BlockJacobi {
-                self.jacobi_blocks(&springs)
-            } else {
-                Vec::new()
-            };
-            let kept = origin
+            // (An island without free nodes has nothing to solve.)
+            let multigrid =
+                self.settings.preconditioner == Preconditioner::Multigrid && !free.is_empty();
+            // The hierarchy of the island it split from, and its rows there.
+            let parent = origin
                 .filter(|&o| {
-                    only_broke
-                        && old[o as usize]
-                            .as_ref()
-                            .and_then(|i| i.multigrid.as_ref())
-                            .is_some_and(|h| 2 * free.len() >= h.nodes.len())
-                        && free.iter().all(|&v| old_island[v as usize] == o)
+                    multigrid && only_broke && free.iter().all(|&v| old_island[v as usize] == o)
                 })
-                .and_then(|o| old[o as usize].as_mut().and_then(|i| i.multigrid.take()))
-                .map(|mut h| {
-                    // The springs broken since, taken off it.
-                    let removed: Vec<LocalSpring> = old_mask
-                        .into_iter()
-                        .flat_map(|t| (0..broken.len()).filter(|&b| broken[b] && !t[b]))
-                        .map(|b| &self.springs[b])
-                        .filter(|s| {
-                            h.nodes.binary_search(&s.a).is_ok()
-                                || h.nodes.binary_search(&s.b).is_ok()
-                        })
-                        .map(|s| {
-                            LocalSpring::new(
-                                s,
-                                hierarchy_end(&h.nodes, s.a),
-                                hierarchy_end(&h.nodes, s.b),
-                            )
-                        })
-                        .collect();
-                    if !removed.is_empty() {
-                        Arc::make_mut(&mut h).multigrid.remove_springs(&removed);
+                .and_then(|o| old[o as usize].as_ref().and_then(|i| i.multigrid))
+                .filter(|&k| self.hierarchies.get(k).is_some());
+            if let Some(k) = parent
+                && !updated[k as usize]
+            {
+                updated[k as usize] = true;
+                self.take_off_broken(k, broken, old_mask, &old_island);
+            }
+            let parent = parent.and_then(|k| {
+                let h = self.hierarchies.get(k)?;
+                let rows: Option<Vec<u32>> = free
+                    .iter()
+                    .map(|v| h.nodes.binary_search(v).ok().map(|r| r as u32))
+                    .collect();
+                Some((k, rows?, 2 * free.len() >= h.nodes.len()))
+            });
+            let pos =
+                || -> Vec<DVec3> { free.iter().map(|&v| self.centroid[v as usize]).collect() };
+            let (mut multigrid_k, mut rows, mut build) = (None, None, None);
+            if multigrid {
+                match parent {
+                    Some((k, r, true)) => (multigrid_k, rows) = (Some(k), Some(r)),
+                    Some((k, r, false)) if sliced => {
+                        (multigrid_k, rows) = (Some(k), Some(r));
+                        build = Some(Box::new(Build::new(&springs, &pos())));
                     }
-                    h
-                });
-            let (multigrid, map) = if self.settings.preconditioner == Preconditioner::Multigrid {
-                match kept {
-                    Some(h) => {
-                        let map = h
-                            .nodes
-                            .iter()
-                            .map(|&v| {
-                                if self.node_island[v as usize] == id {
-                                    self.local[v as usize]
-                                } else {
-                                    u32::MAX
-                                }
-                            })
-                            .collect();
-                        (Some(h), Some(map))
-                    }
-                    None => {
+                    None if sliced => build = Some(Box::new(Build::new(&springs, &pos()))),
+                    _ => {
                         built += 1;
-                        let pos: Vec<DVec3> =
-                            free.iter().map(|&v| self.centroid[v as usize]).collect();
-                        let h = Hierarchy {
-                            multigrid: Multigrid::new(&springs, &pos),
-                            nodes: free.clone(),
-                        };
-                        (Some(Arc::new(h)), None)
+                        let h = Hierarchy::new(Multigrid::new(&springs, &pos()), free.clone());
+                        multigrid_k = Some(self.hierarchies.insert(h));
                     }
                 }
+            }
+            let jacobi = if !multigrid || multigrid_k.is_none() {
+                jacobi_blocks(&springs)
             } else {
-                (None, None)
+                Vec::new()
             };
             let gravity = free.iter().map(|&v| old_gravity[v as usize]).collect();
             let dynamic = free.iter().map(|&v| old_dynamic[v as usize]).collect();
@@ -361,8 +397,9 @@ impl StressSolver {
                 springs,
                 gravity: Part::starting_at(gravity),
                 dynamic: Part::starting_at(dynamic),
-                multigrid,
-                map,
+                multigrid: multigrid_k,
+                rows,
+                build,
                 jacobi,
                 ..IslandState::default()
             });
@@ -384,30 +421,66 @@ impl StressSolver {
                 island.load_scale = None;
             }
         }
+        self.hierarchies
+            .keep_only(self.islands.iter().filter_map(|i| i.multigrid));
         self.topology = Some(broken.to_vec());
         built
     }
 
-    /// The inverses of each free node's displacement and rotation blocks.
-    fn jacobi_blocks(&self, springs: &LocalSprings) -> Vec<(DMat3, DMat3)> {
-        let mut blocks = vec![(DMat3::ZERO, DMat3::ZERO); springs.n + 1];
-        for s in &springs.springs {
-            let nn = outer(s.n, s.n);
-            let k = DMat3::from_diagonal(DVec3::splat(s.ks)) + nn * s.dn;
-            let kr = DMat3::from_diagonal(DVec3::splat(s.kb)) + nn * s.dt;
-            for (v, r) in [(s.a, s.ra), (s.b, s.rb)] {
-                let rx = skew(r);
-                let block = &mut blocks[v as usize];
-                block.0 += k;
-                block.1 += rx.transpose() * k * rx + kr;
-            }
-        }
-        blocks.truncate(springs.n);
-        blocks
+    /// Takes the springs broken since `old_mask` with an end among hierarchy `k`'s nodes
+    /// off it; not those of nodes that were in no anchored island (`old_island`), such as
+    /// pieces dropped in place, whose springs were taken off then.
+    fn take_off_broken(
+        &mut self,
+        k: u32,
+        broken: &[bool],
+        old_mask: Option<&[bool]>,
+        old_island: &[u32],
+    ) {
+        let Some(h) = self.hierarchies.get(k) else {
+            return;
+        };
+        let removed: Vec<LocalSpring> = old_mask
             .into_iter()
-            .map(|(u, t)| (invert(u), invert(t)))
-            .collect()
+            .flat_map(|t| (0..broken.len()).filter(|&b| broken[b] && !t[b]))
+            .map(|b| &self.springs[b])
+            .filter(|s| old_island[s.a as usize] != u32::MAX)
+            .filter(|s| h.nodes.binary_search(&s.a).is_ok() || h.nodes.binary_search(&s.b).is_ok())
+            .map(|s| {
+                LocalSpring::new(
+                    s,
+                    hierarchy_end(&h.nodes, s.a),
+                    hierarchy_end(&h.nodes, s.b),
+                )
+            })
+            .collect();
+        if !removed.is_empty()
+            && let Some(h) = self.hierarchies.get_mut(k)
+        {
+            h.multigrid.remove_springs(&removed);
+        }
     }
+}
+
+/// The inverses of each free node's displacement and rotation blocks.
+pub(super) fn jacobi_blocks(springs: &LocalSprings) -> Vec<(DMat3, DMat3)> {
+    let mut blocks = vec![(DMat3::ZERO, DMat3::ZERO); springs.n + 1];
+    for s in &springs.springs {
+        let nn = outer(s.n, s.n);
+        let k = DMat3::from_diagonal(DVec3::splat(s.ks)) + nn * s.dn;
+        let kr = DMat3::from_diagonal(DVec3::splat(s.kb)) + nn * s.dt;
+        for (v, r) in [(s.a, s.ra), (s.b, s.rb)] {
+            let rx = skew(r);
+            let block = &mut blocks[v as usize];
+            block.0 += k;
+            block.1 += rx.transpose() * k * rx + kr;
+        }
+    }
+    blocks.truncate(springs.n);
+    blocks
+        .into_iter()
+        .map(|(u, t)| (invert(u), invert(t)))
+        .collect()
 }
 
 /// A graph node's index in a hierarchy built on the free nodes `nodes` (ascending): its

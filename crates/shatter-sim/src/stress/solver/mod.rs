@@ -31,9 +31,12 @@ use crate::stress::limits::{BondStress, Failure, StressLimits};
 use crate::stress::spring::Spring;
 
 mod cg;
+mod detach;
+mod hierarchies;
 mod islands;
 
 use cg::Scratch;
+use hierarchies::Hierarchies;
 use islands::IslandState;
 
 /// Nominal Young's modulus (Pa); it cancels out of the stresses.
@@ -63,10 +66,24 @@ pub struct SolverSettings {
     /// iteration's time grows with them. So this, unlike `budget`, bounds a solve's time
     /// for objects of every size: at the World's default
     /// ([`DEFAULT_STRESS_SPRING_BUDGET`](crate::DEFAULT_STRESS_SPRING_BUDGET)) a
-    /// 20,000-bond island advances one iteration per solve and a 1,000-bond one 24. A
-    /// solve always does at least one start or iteration; what is left goes on at the
-    /// next solve, as with `budget`.
+    /// 20,000-bond island advances one iteration per solve and a 1,000-bond one 24. An
+    /// island that cannot afford its next start or iteration waits (and so do the islands
+    /// after it), and the springs left are saved for it (up to that cost) and added to the
+    /// next solve's: a 50,000-bond island iterates every third solve, so the springs
+    /// visited per solve average to at most the budget however large the object (one
+    /// solve visits at most the budget plus one unit). What is left goes on at the next
+    /// solve, as with `budget`.
     pub spring_budget: Option<usize>,
+    /// Most work per [`StressSolver::solve`] on multigrid hierarchies under construction,
+    /// in block operations (a 6×6 block times a vector, 36 multiply-adds; `None`: an
+    /// island builds its hierarchy at once, in the solve that needs it). With a budget,
+    /// an island split from a larger one uses that island's hierarchy (restricted to its
+    /// nodes) and an island with none to use block Jacobi, while its own is built a slice
+    /// per solve; a slice stops at the end of the row of the build that reaches the
+    /// budget. [`StressSolver::prepare`] always builds at once. At the World's default
+    /// ([`DEFAULT_STRESS_BUILD_BUDGET`](crate::DEFAULT_STRESS_BUILD_BUDGET)) a
+    /// 20,000-bond island's hierarchy takes about 50 solves.
+    pub build_budget: Option<usize>,
     /// Shear over normal stiffness, `G/E`.
     pub shear_ratio: f64,
     /// How the conjugate gradients are preconditioned.
@@ -127,6 +144,7 @@ impl Default for SolverSettings {
             max_iterations: 1000,
             budget: None,
             spring_budget: None,
+            build_budget: None,
             shear_ratio: 0.4,
             preconditioner: Preconditioner::Multigrid,
         }
@@ -148,9 +166,17 @@ pub struct SolveReport {
     pub residual: f64,
     /// Anchored islands left for a later solve because the budget was spent.
     pub islands_deferred: usize,
-    /// Multigrid hierarchies built (after the bonds changed); an island that only lost
-    /// bonds, or a few nodes, keeps its hierarchy.
+    /// Multigrid hierarchies built or completed (after the bonds changed); an island
+    /// that only lost bonds, or up to half its nodes, keeps its hierarchy.
     pub hierarchies_built: usize,
+    /// Work done on hierarchies under construction, in block operations (see
+    /// [`SolverSettings::build_budget`]).
+    pub build_work: usize,
+    /// Whether the islands were rebuilt from the bond mask, every bond read (an island
+    /// split into parts that each have an anchor, or into large ones); bonds that break
+    /// with a detour between their ends, or cut off small pieces without an anchor, are
+    /// taken off in place.
+    pub rebuilt: bool,
     /// Springs visited by starts and iterations (see [`SolverSettings::spring_budget`]).
     pub springs: usize,
 }
@@ -201,6 +227,13 @@ pub struct StressSolver {
     gravity: DVec3,
     /// Mean bond length: torque residuals are divided by it to compare with forces.
     length_scale: f64,
+    /// The multigrid hierarchies the islands use.
+    hierarchies: Hierarchies,
+    /// Rebuilds of the islands so far.
+    rebuilds: u64,
+    /// Springs of the spring budget saved by solves that could not afford an island's
+    /// next start or iteration (see [`SolverSettings::spring_budget`]).
+    credit: usize,
     scratch: Scratch,
     /// Per node, the search that last reached it (see `islands.rs`, `detour`).
     seen: Vec<u32>,
@@ -249,6 +282,9 @@ impl StressSolver {
             local: vec![u32::MAX; n],
             gravity: DVec3::ZERO,
             length_scale,
+            hierarchies: Hierarchies::default(),
+            rebuilds: 0,
+            credit: 0,
             scratch: Scratch::default(),
             seen: vec![0; n],
             stamp: 0,
@@ -270,7 +306,7 @@ impl StressSolver {
         if self.topology.as_deref() == Some(broken) {
             return 0;
         }
-        self.update_topology(graph, broken)
+        self.update_topology(graph, broken, true)
     }
 
     /// Solves the anchored islands of the intact bonds (`broken[b]`: bond `b` is gone)
@@ -288,11 +324,16 @@ impl StressSolver {
             .topology
             .as_deref()
             .is_none_or(|t| t.len() != broken.len() || t != broken);
-        let built = if changed {
-            self.update_topology(graph, broken)
+        let rebuilds = self.rebuilds;
+        let mut built = if changed {
+            self.update_topology(graph, broken, false)
         } else {
             0
         };
+        // Hierarchies under construction go on (and are used from this solve if done).
+        let (build_work, completed) =
+            self.advance_builds(self.settings.build_budget.unwrap_or(usize::MAX));
+        built += completed;
         if gravity != self.gravity {
             self.gravity = gravity;
             self.islands.iter_mut().for_each(|i| {
@@ -315,10 +356,19 @@ impl StressSolver {
         let mut report = SolveReport {
             converged: true,
             hierarchies_built: built,
+            build_work,
+            rebuilt: self.rebuilds != rebuilds,
             ..SolveReport::default()
         };
         let mut budget = self.settings.budget.unwrap_or(usize::MAX);
-        let mut springs_left = self.settings.spring_budget.unwrap_or(usize::MAX);
+        // The springs of this solve, and those saved by the solves before it that could not
+        // afford an iteration.
+        let mut springs_left = self
+            .settings
+            .spring_budget
+            .map_or(usize::MAX, |b| b.saturating_add(self.credit));
+        // The next unit of the first island that could not afford one.
+        let mut owed = 0;
         self.last_solved.clear();
         for (i, fresh) in by_island.into_iter().enumerate() {
             let island = &mut self.islands[i];
@@ -334,13 +384,18 @@ impl StressSolver {
                 island.dynamic.resume = None;
                 island.load_scale = None;
             }
-            // Starts and iterations this island may have: what is left of the springs, at
-            // least one for the first island that works in this solve.
-            let bonds = island.bonds.len().max(1);
+            // Starts and iterations this island may have: what is left of the springs.
+            let bonds = island.cost(&self.hierarchies);
+            // Once an island waits for springs, the islands after it wait too, so that the
+            // springs saved are its.
             let units = match springs_left {
                 usize::MAX => usize::MAX,
-                left => (left / bonds).max(usize::from(report.springs == 0)),
+                _ if owed > 0 => 0,
+                left => left / bonds,
             };
+            if units == 0 && owed == 0 {
+                owed = bonds;
+            }
             if budget == 0 || units == 0 {
                 // Not solved this time: still owed, with its loads kept for it.
                 island.settled = false;
@@ -368,6 +423,13 @@ impl StressSolver {
             report.converged &= outcome.converged;
             self.last_solved.push(i as u32);
         }
+        // An island that could not afford a unit has the springs left saved for it, up to
+        // what the unit costs.
+        self.credit = if self.settings.spring_budget.is_some() {
+            springs_left.min(owed)
+        } else {
+            0
+        };
         report
     }
 
