@@ -111,6 +111,18 @@ fn bench_stress_reports_the_20000_bond_graph_and_skips_it_when_settled() {
     assert_eq!(json["cold"]["converged"], false);
     assert!(json["settled"]["iterations"].as_f64().unwrap() > 0.0);
     assert_eq!(json["preconditioner"], "multigrid");
+    // As the World runs it: every case converges, one solve at a time within the
+    // budgets, and the mean per solve is reported.
+    let world = &json["world"];
+    for key in ["cold", "hit", "bond_broken"] {
+        assert_eq!(world[key]["converged"], true, "{key}: {world}");
+        assert!(
+            world[key]["solves"].as_f64().unwrap() > 1.0,
+            "{key}: {world}"
+        );
+    }
+    assert!(world["per_solve_ms"].as_f64().unwrap() > 0.0, "{world}");
+    assert_eq!(world["spring_budget"], 24_000);
     shatter(dir.path(), &["bench", "stress", "--runs", "0"]).bad_input(&["--runs"]);
     shatter(dir.path(), &["bench", "stress", "--preconditioner", "ilu"])
         .bad_input(&["--preconditioner", "multigrid, block-jacobi"]);

@@ -12,6 +12,10 @@ use shatter_geom::fracture::{
 use shatter_geom::model::Model;
 use shatter_geom::{DVec3, TriMesh, io, shapes};
 
+mod support;
+
+use support::{bary, lerp, tri};
+
 fn voronoi(pieces: usize, seed: u64) -> FractureParams {
     FractureParams::voronoi(pieces, seed)
 }
@@ -38,11 +42,22 @@ fn tetra(random_vertices: usize, seed: u64) -> FractureParams {
     }
 }
 
+fn grid(cells: [u32; 3], seed: u64) -> FractureParams {
+    FractureParams {
+        method: Method::Grid {
+            cells,
+            voids: Vec::new(),
+        },
+        seed,
+    }
+}
+
 fn every_method(seed: u64) -> Vec<(&'static str, FractureParams)> {
     vec![
         ("voronoi", voronoi(12, seed)),
         ("slice", slice(3, seed)),
         ("tetra", tetra(20, seed)),
+        ("grid", grid([3, 2, 2], seed)),
     ]
 }
 
@@ -95,22 +110,6 @@ fn scrambled(mesh: TriMesh, salt: u64) -> Model {
     m
 }
 
-fn tri(mesh: &TriMesh, t: usize) -> [DVec3; 3] {
-    mesh.triangles[t].map(|i| mesh.positions[i as usize])
-}
-
-/// Barycentric coordinates of `p` in `[a, b, c]` (plain solve, independent of the
-/// library's).
-fn bary([a, b, c]: [DVec3; 3], p: DVec3) -> [f64; 3] {
-    let (v0, v1, v2) = (b - a, c - a, p - a);
-    let (d00, d01, d11) = (v0.dot(v0), v0.dot(v1), v1.dot(v1));
-    let (d20, d21) = (v2.dot(v0), v2.dot(v1));
-    let den = d00 * d11 - d01 * d01;
-    let v = (d11 * d20 - d01 * d21) / den;
-    let w = (d00 * d21 - d01 * d20) / den;
-    [1.0 - v - w, v, w]
-}
-
 fn closest_on([a, b, c]: [DVec3; 3], p: DVec3) -> f64 {
     // Distance from p to the triangle: inside → to the plane, else to the edges.
     let w = bary([a, b, c], p);
@@ -123,10 +122,6 @@ fn closest_on([a, b, c]: [DVec3; 3], p: DVec3) -> f64 {
         (u + (v - u) * t - p).length()
     };
     seg(a, b).min(seg(b, c)).min(seg(c, a))
-}
-
-fn lerp<const N: usize>(v: &[[f32; N]; 3], w: [f64; 3]) -> [f64; N] {
-    std::array::from_fn(|i| (0..3).map(|k| f64::from(v[k][i]) * w[k]).sum())
 }
 
 /// Checks every surface corner of every fragment against the barycentric value of the
@@ -252,11 +247,7 @@ fn every_fragment_of_a_textured_model_has_uvs_and_its_materials_by_every_method(
                 model.material.iter().copied().collect();
             for (i, f) in fr.fragments.iter().enumerate() {
                 let n = f.mesh.triangles.len();
-                assert_eq!(
-                    f.corners.uv.is_some(),
-                    model.corners.uv.is_some(),
-                    "{what} {i}"
-                );
+                assert!(f.corners.uv.is_some(), "{what} {i}: no UVs");
                 assert_eq!(f.corners.normal.is_some(), model.corners.normal.is_some());
                 if let Some(uv) = &f.corners.uv {
                     assert_eq!(uv.len(), n, "{what} {i}");
@@ -292,11 +283,7 @@ fn every_fragment_of_a_textured_model_has_uvs_and_its_materials_by_every_method(
             let back = io::parse_model(&glb, io::MeshFormat::Glb, "out.glb")
                 .unwrap()
                 .model;
-            assert_eq!(
-                back.corners.uv.is_some(),
-                model.corners.uv.is_some(),
-                "{what}: GLB UVs"
-            );
+            assert!(back.corners.uv.is_some(), "{what}: GLB UVs");
             let images = back
                 .materials
                 .iter()
@@ -312,65 +299,13 @@ fn every_fragment_of_a_textured_model_has_uvs_and_its_materials_by_every_method(
     }
 }
 
-/// The UV of `uv` (per corner of `p`) at point `q` of the triangle.
-fn uv_at(p: [DVec3; 3], uv: &[[f32; 2]; 3], q: DVec3) -> [f64; 2] {
-    lerp(uv, bary(p, q))
-}
-
 #[test]
 fn interior_uvs_are_continuous_across_bonds() {
     let model = scrambled(shapes::bird(), 1);
     for (name, params) in every_method(2) {
         let fr = fracture_model(&model, &params).unwrap();
-        let scale = 1.0; // the bird is about 2 units across
-        let eps = 1e-9 * scale;
-        let (mut compared, mut bonds_seen) = (0usize, 0usize);
-        for bond in &fr.bonds {
-            let (fa, fb) = (
-                &fr.fragments[bond.a as usize],
-                &fr.fragments[bond.b as usize],
-            );
-            let caps = |f: &shatter_geom::fracture::Fragment| -> Vec<usize> {
-                (0..f.mesh.triangles.len())
-                    .filter(|&t| f.interior[t])
-                    .collect()
-            };
-            let (ca, cb) = (caps(fa), caps(fb));
-            let mut here = 0;
-            for &ta in &ca {
-                let pa = tri(&fa.mesh, ta);
-                let na = (pa[1] - pa[0]).cross(pa[2] - pa[0]);
-                if na.length() < 1e-12 {
-                    continue;
-                }
-                let na = na.normalize();
-                let centre = (pa[0] + pa[1] + pa[2]) / 3.0;
-                for &tb in &cb {
-                    let pb = tri(&fb.mesh, tb);
-                    let coplanar = pb.iter().all(|&q| na.dot(q - pa[0]).abs() <= eps);
-                    let nb = (pb[1] - pb[0]).cross(pb[2] - pb[0]);
-                    if !coplanar || nb.dot(na) >= 0.0 {
-                        continue;
-                    }
-                    let w = bary(pb, centre);
-                    if w.iter().any(|&x| x < 1e-6) {
-                        continue;
-                    }
-                    let from_a = uv_at(pa, &fa.corners.uv.as_ref().unwrap()[ta], centre);
-                    let from_b = uv_at(pb, &fb.corners.uv.as_ref().unwrap()[tb], centre);
-                    assert!(
-                        (from_a[0] - from_b[0]).abs() < 1e-5
-                            && (from_a[1] - from_b[1]).abs() < 1e-5,
-                        "{name}: bond {}-{}: {from_a:?} on one side, {from_b:?} on the other",
-                        bond.a,
-                        bond.b
-                    );
-                    here += 1;
-                }
-            }
-            compared += here;
-            bonds_seen += usize::from(here > 0);
-        }
+        // The bird is about 2 units across.
+        let (compared, bonds_seen) = support::interior_uvs_agree(&fr, 1e-9, 1e-5, name);
         assert!(
             bonds_seen * 10 >= fr.bonds.len() * 9 && compared > 0,
             "{name}: compared {compared} points on {bonds_seen} of {} bonds",
@@ -444,14 +379,64 @@ fn seams_stay_seams_and_each_side_keeps_its_chart() {
     }
 }
 
+/// A mesh without UVs: every fragment still has them. A surface triangle's are the box
+/// projection of the object's frame, written out here on its own: along the coordinate
+/// axis `k` its face is most along, `uv = ((p − lo)[k+1], (p − lo)[k+2]) / extent`, with
+/// `lo` the low corner of the input's bounds and `extent` its largest side.
 #[test]
-fn a_bare_mesh_gets_materials_and_no_attributes() {
-    let fr = fracture(&shapes::bird(), &voronoi(8, 0)).unwrap();
-    assert_eq!(fr.materials.len(), 2);
-    for f in &fr.fragments {
-        assert_eq!(f.corners, Default::default());
-        let want: Vec<u32> = f.interior.iter().map(|&i| u32::from(i)).collect();
-        assert_eq!(f.material, want);
+fn a_bare_mesh_gets_materials_and_box_projected_uvs_and_no_other_attributes() {
+    let bird = shapes::bird();
+    let lo = bird
+        .positions
+        .iter()
+        .fold(DVec3::splat(f64::INFINITY), |a, &p| a.min(p));
+    let hi = bird
+        .positions
+        .iter()
+        .fold(DVec3::splat(f64::NEG_INFINITY), |a, &p| a.max(p));
+    let extent = (hi - lo).max_element();
+    for (name, params) in every_method(0) {
+        let fr = fracture(&bird, &params).unwrap();
+        assert_eq!(fr.materials.len(), 2, "{name}");
+        let mut surface = 0;
+        for f in &fr.fragments {
+            assert!(f.corners.normal.is_none() && f.corners.color.is_none());
+            let want: Vec<u32> = f.interior.iter().map(|&i| u32::from(i)).collect();
+            assert_eq!(f.material, want, "{name}");
+            let uv = f.corners.uv.as_ref().expect("every fragment has UVs");
+            assert_eq!(uv.len(), f.mesh.triangles.len());
+            for (t, tri) in f.mesh.triangles.iter().enumerate() {
+                if f.interior[t] {
+                    continue;
+                }
+                // The face's own normal picks the same axis as its input triangle's
+                // unless the two are within rounding of a tie: only clear faces count.
+                let p = tri.map(|i| f.mesh.positions[i as usize]);
+                let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero().abs();
+                let mut axes = [0usize, 1, 2];
+                axes.sort_by(|&a, &b| n[b].total_cmp(&n[a]));
+                if n[axes[0]] - n[axes[1]] < 0.2 {
+                    continue;
+                }
+                let k = axes[0];
+                for c in 0..3 {
+                    let d = p[c] - lo;
+                    let want = [d[(k + 1) % 3] / extent, d[(k + 2) % 3] / extent];
+                    for j in 0..2 {
+                        assert!(
+                            (f64::from(uv[t][c][j]) - want[j]).abs() < 1e-5,
+                            "{name}: {:?} vs {want:?}",
+                            uv[t][c]
+                        );
+                    }
+                }
+                surface += 1;
+            }
+        }
+        assert!(
+            surface > 100,
+            "{name}: only {surface} surface triangles checked"
+        );
     }
 }
 

@@ -246,3 +246,27 @@ fn the_stress_budget_is_read_and_saved() {
         assert_eq!(budget(&saved), budget(text), "{saved}");
     }
 }
+
+#[test]
+fn the_stress_spring_budget_is_read_and_saved() {
+    use shatter_sim::DEFAULT_STRESS_SPRING_BUDGET;
+    let budget = |text: &str| Scene::parse(text).unwrap().settings.stress_spring_budget;
+    assert_eq!(budget(""), Some(DEFAULT_STRESS_SPRING_BUDGET));
+    assert_eq!(budget("[world]\nstress_spring_budget = 5000\n"), Some(5000));
+    assert_eq!(budget("[world]\nstress_spring_budget = \"none\"\n"), None);
+    for text in [
+        "[world]\nstress_spring_budget = 5000\n",
+        "[world]\nstress_spring_budget = \"none\"\n",
+    ] {
+        let world = Scene::parse(text).unwrap().build(None).unwrap();
+        let saved = world.to_scene_toml().unwrap();
+        assert_eq!(budget(&saved), budget(text), "{saved}");
+    }
+    let e = Scene::parse("[world]\nstress_spring_budget = 0\n")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("world.stress_spring_budget") && e.contains("none"),
+        "{e}"
+    );
+}

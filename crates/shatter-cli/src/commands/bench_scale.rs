@@ -63,7 +63,7 @@ pub fn run(args: &BenchScaleArgs, ctx: &Context) -> Result<BenchScaleReport, Cli
         report.steps, report.seconds, report.measured_seconds, report.estimated_seconds
     );
     println!(
-        "{:<9} {:<8} {:>9} {:>14} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>8} {:>7}",
+        "{:<9} {:<8} {:>9} {:>14} {:>9} {:>9} {:>9} {:>9} {:>9} {:>10} {:>8} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>8} {:>7}",
         "case",
         "model",
         "fragments",
@@ -72,6 +72,12 @@ pub fn run(args: &BenchScaleArgs, ctx: &Context) -> Result<BenchScaleReport, Cli
         "mean ms",
         "max ms",
         "cpu ms",
+        "stress ms",
+        "stress max",
+        "solve ms",
+        "solve max",
+        "solve cpu",
+        "cpu max",
         "bodies",
         "asleep",
         "still",
@@ -80,7 +86,7 @@ pub fn run(args: &BenchScaleArgs, ctx: &Context) -> Result<BenchScaleReport, Cli
     );
     for r in &report.rows {
         println!(
-            "{:<9} {:<8} {:>9} {:>14} {:>9.1} {:>9.3} {:>9.3} {:>9} {:>7} {:>7} {:>7} {:>8} {:>7}",
+            "{:<9} {:<8} {:>9} {:>14} {:>9.1} {:>9.3} {:>9.3} {:>9} {:>9.3} {:>10.3} {:>8.3} {:>9.3} {:>9} {:>9} {:>7} {:>7} {:>7} {:>8} {:>7}",
             r.case,
             r.model,
             r.fragments,
@@ -89,6 +95,12 @@ pub fn run(args: &BenchScaleArgs, ctx: &Context) -> Result<BenchScaleReport, Cli
             r.mean_ms,
             r.max_ms,
             cpu(r.cpu_mean_ms),
+            r.stress_mean_ms,
+            r.stress_max_ms,
+            r.solve_mean_ms,
+            r.solve_max_ms,
+            cpu(r.solve_cpu_mean_ms),
+            cpu(r.solve_cpu_max_ms),
             r.bodies,
             r.sleeping_bodies,
             r.still_fragments,
@@ -96,7 +108,9 @@ pub fn run(args: &BenchScaleArgs, ctx: &Context) -> Result<BenchScaleReport, Cli
             r.bonds_broken
         );
     }
-    println!("ms: wall clock per step; cpu ms: the stepping thread's CPU per step over the run");
+    println!(
+        "ms: wall clock per step; cpu ms: the stepping thread's CPU per step over the run; stress ms: the step's stress pass (solves, breaks, splits); solve ms: its solves alone; solve cpu, cpu max: the solves' CPU per step, mean and largest"
+    );
     println!(
         "asleep: dynamic bodies Rapier put to sleep; still: fragments whose pose did not change over the last step (sleeping or fixed)"
     );

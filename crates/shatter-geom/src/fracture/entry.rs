@@ -82,7 +82,8 @@ pub fn fracture(mesh: &TriMesh, params: &FractureParams) -> Result<Fracture, Fra
 /// [`Fracture::materials`], flat normals, white colours and planar UVs: a projection
 /// onto the cut's plane, in a basis of the plane alone and one world-space scale for
 /// the whole object (one over its largest extent), so both sides of a crack map a point
-/// to the same UV. Attributes the model lacks stay absent.
+/// to the same UV. Every fragment has UVs: where the model has none, surface triangles get
+/// a box projection in the same frame. Normals and colours the model lacks stay absent.
 ///
 /// ```
 /// use shatter_geom::fracture::{fracture_model, FractureParams, Method};
@@ -293,6 +294,9 @@ fn fracture_tagged(
     if !partial || frame.is_per_axis() {
         check_volume_sum(&local, volume)?;
     }
+    // Every result is checked as `Fracture::validate` checks it (closed 2-manifold
+    // fragments, no faces back to back, well-formed bonds): a wrong one is refused.
+    local.validate(None)?;
     let mut result = frame.fracture_to_world(local)?;
     for f in &mut result.fragments {
         f.mesh.mark_solid();

@@ -310,6 +310,15 @@ pub enum FractureError {
         /// Sum of the fragments' volumes over the mesh's.
         ratio: f64,
     },
+    /// The fracture's own result failed [`Fracture::validate`](super::Fracture::validate)
+    /// (a fragment not closed, two triangles back to back, a bad bond): an error in
+    /// shatter, refused rather than returned. Every result is checked before it is
+    /// returned.
+    #[error(
+        "the fracture made an invalid result ({0}); this is a bug in shatter: please \
+         report it with the mesh"
+    )]
+    Invalid(#[from] super::check::InvalidFracture),
     /// An explicit seed, plane point or impact point so far from the mesh that the
     /// fracture's local frame (the mesh's box scaled to unit size) cannot hold it.
     #[error("{what} {index} is too far from the mesh to be represented in its frame")]

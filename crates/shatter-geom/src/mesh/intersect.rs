@@ -110,6 +110,57 @@ pub(crate) fn triangles_meet(t: [DVec3; 3], u: [DVec3; 3]) -> bool {
         || (0..3).any(|i| segment_meets_triangle(u[i], u[(i + 1) % 3], t))
 }
 
+/// How far triangle `t` pokes through triangle `u`: the part of `t` over `u` (clipped to
+/// the prism `u` spans along its normal) lies on both sides of `u`'s plane; this is the
+/// lesser of the two sides' greatest distances from the plane (0 when `t` only touches
+/// `u`, or lies on one side of it). Floating point, for telling rounding from a real
+/// crossing; `u` must not be degenerate.
+fn poke_depth(t: [DVec3; 3], u: [DVec3; 3]) -> f64 {
+    let Some(n) = (u[1] - u[0]).cross(u[2] - u[0]).try_normalize() else {
+        return 0.0;
+    };
+    // Keeps the part of `poly` where `m·x ≥ d`.
+    let clip = |poly: Vec<DVec3>, m: DVec3, d: f64| -> Vec<DVec3> {
+        let mut out = Vec::with_capacity(poly.len() + 2);
+        for (i, &a) in poly.iter().enumerate() {
+            let b = poly[(i + 1) % poly.len()];
+            let (da, db) = (m.dot(a) - d, m.dot(b) - d);
+            if da >= 0.0 {
+                out.push(a);
+            }
+            if (da >= 0.0) != (db >= 0.0) {
+                out.push(a + (b - a) * (da / (da - db)));
+            }
+        }
+        out
+    };
+    let mut over = t.to_vec();
+    for i in 0..3 {
+        let (a, b) = (u[i], u[(i + 1) % 3]);
+        let Some(m) = n.cross(b - a).try_normalize() else {
+            return 0.0;
+        };
+        over = clip(over, m, m.dot(a));
+        if over.is_empty() {
+            return 0.0;
+        }
+    }
+    let level = n.dot(u[0]);
+    let side = |s: f64| {
+        clip(over.clone(), n * s, level * s)
+            .iter()
+            .map(|p| (n.dot(*p) - level).abs())
+            .fold(0.0, f64::max)
+    };
+    side(1.0).min(side(-1.0))
+}
+
+/// How deep two meeting triangles cross: the lesser of each poking through the other
+/// ([`poke_depth`]); 0 for triangles that only touch.
+pub(crate) fn crossing_depth(t: [DVec3; 3], u: [DVec3; 3]) -> f64 {
+    poke_depth(t, u).min(poke_depth(u, t))
+}
+
 impl TriMesh {
     /// Pairs of triangles `(s, t)`, `s < t`, that share no vertex (after welding) yet
     /// touch or cross, decided exactly. Triangles sharing a vertex or an edge are not
@@ -275,6 +326,36 @@ mod tests {
         assert!(triangles_meet(T, touch));
         let above = touch.map(|p| p + DVec3::Z * 1e-12);
         assert!(!triangles_meet(T, above));
+    }
+
+    #[test]
+    fn crossing_depth_is_how_far_one_triangle_pokes_through_the_other() {
+        // Pierces T at (0.2, 0.2) from z = −1 to z = 1: it reaches 1 on each side.
+        let pierce = [
+            DVec3::new(0.2, 0.2, -1.0),
+            DVec3::new(0.2, 0.2, 1.0),
+            DVec3::new(0.3, 0.25, 1.0),
+        ];
+        assert!((poke_depth(pierce, T) - 1.0).abs() < 1e-12);
+        // T, for its part, lies on both sides of the piercing plane, as far as the part
+        // of T over the piercing triangle reaches: less than 1, more than 0.1.
+        let d = crossing_depth(T, pierce);
+        assert!(d > 0.1 && d < 1.0, "{d}");
+        // Pokes 1e-3 below T, a long way above: at most 1e-3.
+        let poke = pierce.map(|p| DVec3::new(p.x, p.y, p.z.max(-1e-3)));
+        assert!((poke_depth(poke, T) - 1e-3).abs() < 1e-12);
+        let d = crossing_depth(T, poke);
+        assert!(d > 0.0 && d <= 1e-3 + 1e-15, "{d}");
+        // Touching only: depth 0.
+        let touch = [
+            DVec3::new(0.2, 0.2, 0.0),
+            DVec3::new(0.2, 0.2, 1.0),
+            DVec3::new(0.3, 0.25, 1.0),
+        ];
+        assert_eq!(crossing_depth(T, touch), 0.0);
+        // Beside T (not over it): nothing pokes through.
+        let beside = pierce.map(|p| p + DVec3::new(2.0, 0.0, 0.0));
+        assert_eq!(crossing_depth(T, beside), 0.0);
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! solid, and inside/outside queries by generalized winding number.
 
 mod check;
-mod intersect;
+pub(crate) mod intersect;
 mod mass;
 pub mod repair;
 mod shells;
@@ -18,4 +18,4 @@ mod winding;
 
 pub use check::MeshReport;
 pub use trimesh::TriMesh;
-pub use validate::MeshError;
+pub use validate::{CROSSING_TOLERANCE, MeshError};

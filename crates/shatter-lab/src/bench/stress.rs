@@ -1,14 +1,20 @@
 //! The stress benchmark: the stress solver on a 20,097-bond graph (a 10 m × 10.2 m ×
 //! 0.6 m stone wall of 50 × 51 × 3 blocks anchored on its bottom row), one core: a cold
 //! solve, a settled (skipped) solve, the warm re-solve after a hit and the one after it,
-//! and the re-solve after a bond breaks. Milliseconds are means over the runs.
+//! and the re-solve after a bond breaks. Milliseconds are means over the runs. The same
+//! cases are then run as the World runs them ([`WorldPass`]): the hierarchy built before
+//! the first solve, as when an object is created, and every solve held to the World's
+//! default budgets, each case solved step after step until it converges; the mean
+//! milliseconds per solve over all of them is what a step pays.
 
 use std::time::Instant;
 
 use shatter_geom::DVec3;
 use shatter_sim::stress::{BondGraph, Preconditioner, SolverSettings, StressSolver};
 use shatter_sim::testing::box_grid_fracture;
+use shatter_sim::{DEFAULT_STRESS_BUDGET, DEFAULT_STRESS_SPRING_BUDGET};
 
+use crate::bench::scale::thread_cpu_ns;
 use crate::context::Context;
 use crate::error::{LabError, ResultExt};
 
@@ -27,6 +33,9 @@ pub struct BenchStressOptions {
     /// With a budget each case is solved again and again, as steps would, until it
     /// converges; its milliseconds are then per solve.
     pub budget: Option<usize>,
+    /// Most springs visited per solve (see `SolverSettings::spring_budget`; `None`: no
+    /// limit), time-slicing as `budget` does.
+    pub spring_budget: Option<usize>,
 }
 
 /// One kind of solve: mean milliseconds and iterations.
@@ -44,6 +53,9 @@ pub struct Timing {
     pub converged: bool,
     /// Largest relative residual left.
     pub residual: f64,
+    /// Mean CPU milliseconds of the thread per solve (`None` where it cannot be read):
+    /// unlike `ms`, not inflated when other processes share the core.
+    pub cpu_ms: Option<f64>,
 }
 
 /// What the benchmark measured.
@@ -69,6 +81,41 @@ pub struct BenchStressReport {
     pub bond_broken: Timing,
     /// Milliseconds per iteration (cold solve).
     pub ms_per_iteration: f64,
+    /// The same cases as the World runs them.
+    pub world: WorldPass,
+}
+
+/// The cases run as the World runs an object: its islands and hierarchy prepared when
+/// it is created ([`StressSolver::prepare`]), every solve held to the World's default
+/// budgets ([`DEFAULT_STRESS_BUDGET`] iterations, [`DEFAULT_STRESS_SPRING_BUDGET`]
+/// springs), each case solved again, step after step, until it converges.
+#[derive(Debug, Clone, Copy, Default, serde::Serialize)]
+pub struct WorldPass {
+    /// Iterations per solve.
+    pub budget: usize,
+    /// Springs visited per solve.
+    pub spring_budget: usize,
+    /// Milliseconds to prepare the islands and the hierarchy (mean over the runs).
+    pub build_ms: f64,
+    /// From rest.
+    pub cold: Timing,
+    /// The 50 kN hit.
+    pub hit: Timing,
+    /// After the hit.
+    pub after_hit: Timing,
+    /// After one base bond breaks.
+    pub bond_broken: Timing,
+    /// Mean milliseconds per solve over every solve of the four cases: what a step pays
+    /// for this object's stresses while it has something to solve (a settled one pays
+    /// nothing).
+    pub per_solve_ms: f64,
+    /// Largest milliseconds of one solve.
+    pub max_solve_ms: f64,
+    /// Mean CPU milliseconds of the thread per solve over every solve of the four cases
+    /// (`None` where it cannot be read).
+    pub per_solve_cpu_ms: Option<f64>,
+    /// Solves in all (mean over the runs).
+    pub solves: f64,
 }
 
 /// The benchmark graph.
@@ -94,6 +141,7 @@ fn timed(
     let sliced = solver.settings().budget.is_some();
     let mut t = Timing::default();
     let mut total = 0.0;
+    let cpu_start = thread_cpu_ns();
     loop {
         let first = t.solves == 0.0;
         let t0 = Instant::now();
@@ -110,6 +158,9 @@ fn timed(
         }
     }
     t.ms = total / t.solves;
+    t.cpu_ms = cpu_start
+        .zip(thread_cpu_ns())
+        .map(|(a, b)| b.saturating_sub(a) as f64 / 1e6 / t.solves);
     t
 }
 
@@ -123,6 +174,11 @@ fn mean(samples: &[Timing]) -> Timing {
         iterations: avg(|t| t.iterations),
         converged: samples.iter().all(|t| t.converged),
         residual: samples.iter().map(|t| t.residual).fold(0.0, f64::max),
+        cpu_ms: samples
+            .iter()
+            .map(|t| t.cpu_ms)
+            .sum::<Option<f64>>()
+            .map(|sum| sum / n),
     }
 }
 
@@ -137,6 +193,9 @@ pub fn run(options: &BenchStressOptions, ctx: &Context) -> Result<BenchStressRep
     }
     if o.budget == Some(0) {
         return Err(LabError::input("--budget must be at least 1 iteration"));
+    }
+    if o.spring_budget == Some(0) {
+        return Err(LabError::input("--spring-budget must be at least 1 spring"));
     }
     if o.runs == 0 || o.runs > 1000 {
         return Err(LabError::input(format!(
@@ -154,6 +213,8 @@ pub fn run(options: &BenchStressOptions, ctx: &Context) -> Result<BenchStressRep
         .position(|b| b.a == 25 && b.b == 25 + 50)
         .ok_or_else(|| LabError::internal("the benchmark graph has no base bond"))?;
     let mut samples: [Vec<Timing>; 5] = Default::default();
+    let mut world: [Vec<Timing>; 4] = Default::default();
+    let mut build_ms = 0.0;
     for _ in 0..o.runs {
         ctx.progress.check()?;
         let settings = SolverSettings {
@@ -161,6 +222,7 @@ pub fn run(options: &BenchStressOptions, ctx: &Context) -> Result<BenchStressRep
             tolerance: o.tolerance,
             preconditioner: o.preconditioner,
             budget: o.budget,
+            spring_budget: o.spring_budget,
             ..SolverSettings::default()
         };
         let mut solver = StressSolver::new(&graph, settings);
@@ -172,8 +234,46 @@ pub fn run(options: &BenchStressOptions, ctx: &Context) -> Result<BenchStressRep
         samples[3].push(timed(&mut solver, &graph, &broken, &[]));
         broken[base_bond] = true;
         samples[4].push(timed(&mut solver, &graph, &broken, &[]));
+        // As the World runs it.
+        let mut solver = StressSolver::new(
+            &graph,
+            SolverSettings {
+                budget: Some(DEFAULT_STRESS_BUDGET),
+                spring_budget: Some(DEFAULT_STRESS_SPRING_BUDGET),
+                ..settings
+            },
+        );
+        let mut broken = vec![false; bonds];
+        let t0 = Instant::now();
+        solver.prepare(&graph, &broken);
+        build_ms += t0.elapsed().as_secs_f64() * 1e3 / o.runs as f64;
+        world[0].push(timed(&mut solver, &graph, &broken, &[]));
+        world[1].push(timed(&mut solver, &graph, &broken, &hit));
+        world[2].push(timed(&mut solver, &graph, &broken, &[]));
+        broken[base_bond] = true;
+        world[3].push(timed(&mut solver, &graph, &broken, &[]));
     }
     let [cold, settled, hit, after_hit, bond_broken] = samples.map(|s| mean(&s));
+    let cases = world.map(|s| mean(&s));
+    let solves: f64 = cases.iter().map(|t| t.solves).sum();
+    let total: f64 = cases.iter().map(|t| t.ms * t.solves).sum();
+    let world = WorldPass {
+        budget: DEFAULT_STRESS_BUDGET,
+        spring_budget: DEFAULT_STRESS_SPRING_BUDGET,
+        build_ms,
+        cold: cases[0],
+        hit: cases[1],
+        after_hit: cases[2],
+        bond_broken: cases[3],
+        per_solve_ms: total / solves.max(1.0),
+        per_solve_cpu_ms: cases
+            .iter()
+            .map(|t| t.cpu_ms.map(|c| c * t.solves))
+            .sum::<Option<f64>>()
+            .map(|sum| sum / solves.max(1.0)),
+        max_solve_ms: cases.iter().map(|t| t.max_ms).fold(0.0, f64::max),
+        solves,
+    };
     Ok(BenchStressReport {
         nodes: graph.nodes().len(),
         bonds,
@@ -185,6 +285,7 @@ pub fn run(options: &BenchStressOptions, ctx: &Context) -> Result<BenchStressRep
         after_hit,
         bond_broken,
         ms_per_iteration: cold.ms * cold.solves / cold.iterations.max(1.0),
+        world,
     })
 }
 
@@ -201,6 +302,7 @@ mod tests {
             tolerance: SolverSettings::default().tolerance,
             preconditioner: Preconditioner::default(),
             budget: None,
+            spring_budget: None,
         }
     }
 
@@ -216,6 +318,10 @@ mod tests {
             (
                 |o| o.budget = Some(0),
                 "--budget must be at least 1 iteration",
+            ),
+            (
+                |o| o.spring_budget = Some(0),
+                "--spring-budget must be at least 1 spring",
             ),
         ] {
             let mut o = options();
@@ -233,6 +339,7 @@ mod tests {
             iterations: ms * 10.0,
             converged,
             residual,
+            cpu_ms: Some(ms),
         };
         let m = mean(&[t(1.0, true, 1e-9), t(3.0, false, 1e-6)]);
         assert_eq!((m.ms, m.iterations, m.solves), (2.0, 20.0, 2.0));

@@ -19,8 +19,15 @@ pub fn fracture(
         method: config.method.clone(),
         seed: config.seed,
     };
-    let mut result = shatter_geom::fracture::fracture_model(model, &params)
-        .map_err(|e| LabError::input(format!("{}: {e}", config.describe())))?;
+    let mut result = shatter_geom::fracture::fracture_model(model, &params).map_err(|e| {
+        let message = format!("{}: {e}", config.describe());
+        // An invalid result is shatter's error, not the input's (exit 1, not 2).
+        if matches!(e, shatter_geom::fracture::FractureError::Invalid(_)) {
+            LabError::internal(message)
+        } else {
+            LabError::input(message)
+        }
+    })?;
     let warnings = std::mem::take(&mut result.warnings);
     Ok((result, warnings))
 }

@@ -54,10 +54,12 @@ pub(crate) struct StressState {
 impl StressState {
     /// The state for `prepared`, or `None` if nothing is anchored (then no island ever
     /// carries a static load).
+    /// The islands and their multigrid hierarchies are built here, with the object,
+    /// rather than in its first step.
     pub fn new(
         prepared: &Prepared,
         limits: StressLimits,
-        budget: Option<usize>,
+        (budget, spring_budget, build_budget): (Option<usize>, Option<usize>, Option<usize>),
     ) -> Option<StressState> {
         if !prepared.anchored.iter().any(|a| *a) {
             return None;
@@ -85,14 +87,17 @@ impl StressState {
             })
             .collect();
         let graph = BondGraph::new(nodes, bonds, prepared.anchored.clone()).ok()?;
-        let solver = StressSolver::new(
+        let mut solver = StressSolver::new(
             &graph,
             SolverSettings {
                 budget,
+                spring_budget,
+                build_budget,
                 ..SolverSettings::default()
             },
         );
         let m = prepared.fracture.bonds.len();
+        solver.prepare(&graph, &vec![false; m]);
         Some(StressState {
             graph,
             solver,

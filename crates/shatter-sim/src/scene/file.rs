@@ -44,6 +44,13 @@ pub struct WorldSection {
     /// Stress-solver iterations per object per step: an integer ≥ 1, or `"none"` (solve
     /// to convergence every step). Default [`crate::world::DEFAULT_STRESS_BUDGET`].
     pub stress_budget: Option<Spanned<toml::Value>>,
+    /// Springs the stress solver visits per object per step: an integer ≥ 1, or `"none"`.
+    /// Default [`crate::world::DEFAULT_STRESS_SPRING_BUDGET`].
+    pub stress_spring_budget: Option<Spanned<toml::Value>>,
+    /// Block operations of multigrid hierarchy building per object per step: an integer
+    /// ≥ 1, or `"none"` (build at once). Default
+    /// [`crate::world::DEFAULT_STRESS_BUILD_BUDGET`].
+    pub stress_build_budget: Option<Spanned<toml::Value>>,
     /// How long `shatter simulate` runs by default, in seconds (default 3).
     pub seconds: Option<Spanned<f64>>,
 }

@@ -97,17 +97,35 @@ impl Scene {
             settings.ground = g;
         }
         settings.max_debris = w.max_debris;
-        if let Some(b) = &w.stress_budget {
-            settings.stress_budget = match b.get_ref() {
-                toml::Value::Integer(n) if *n >= 1 => Some(*n as usize),
-                toml::Value::String(s) if s == "none" => None,
-                other => {
-                    return Err(SimError::invalid(
-                        ctx.key("world.stress_budget", b),
-                        format!("must be an integer ≥ 1 or \"none\", got {other}"),
-                    ));
-                }
-            };
+        for (key, value, setting) in [
+            (
+                "world.stress_budget",
+                &w.stress_budget,
+                &mut settings.stress_budget,
+            ),
+            (
+                "world.stress_spring_budget",
+                &w.stress_spring_budget,
+                &mut settings.stress_spring_budget,
+            ),
+            (
+                "world.stress_build_budget",
+                &w.stress_build_budget,
+                &mut settings.stress_build_budget,
+            ),
+        ] {
+            if let Some(b) = value {
+                *setting = match b.get_ref() {
+                    toml::Value::Integer(n) if *n >= 1 => Some(*n as usize),
+                    toml::Value::String(s) if s == "none" => None,
+                    other => {
+                        return Err(SimError::invalid(
+                            ctx.key(key, b),
+                            format!("must be an integer ≥ 1 or \"none\", got {other}"),
+                        ));
+                    }
+                };
+            }
         }
         let seconds = match &w.seconds {
             Some(s) if !(s.get_ref().is_finite() && *s.get_ref() > 0.0) => {

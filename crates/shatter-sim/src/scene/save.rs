@@ -28,10 +28,9 @@ impl World {
                 bond_model: Some(sp(s.bond_model.name().to_string())),
                 ground: Some(s.ground),
                 max_debris: s.max_debris,
-                stress_budget: Some(sp(match s.stress_budget {
-                    Some(n) => toml::Value::Integer(n as i64),
-                    None => toml::Value::String("none".to_string()),
-                })),
+                stress_budget: Some(sp(budget_value(s.stress_budget))),
+                stress_spring_budget: Some(sp(budget_value(s.stress_spring_budget))),
+                stress_build_budget: Some(sp(budget_value(s.stress_build_budget))),
                 seconds: None,
             },
             ..SceneFile::default()
@@ -141,5 +140,13 @@ impl World {
             }
         }
         toml::to_string(&file).map_err(|e| SimError::invalid("scene", e.to_string()))
+    }
+}
+
+/// A budget as the scene file writes it: an integer, or `"none"`.
+fn budget_value(budget: Option<usize>) -> toml::Value {
+    match budget {
+        Some(n) => toml::Value::Integer(n as i64),
+        None => toml::Value::String("none".to_string()),
     }
 }

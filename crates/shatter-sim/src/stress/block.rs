@@ -4,7 +4,10 @@
 
 use glam::{DMat3, DVec3};
 
-use crate::stress::spring::{Spring, invert, outer, skew};
+use crate::stress::local::LocalSpring;
+#[cfg(test)]
+use crate::stress::spring::Spring;
+use crate::stress::spring::{invert, outer, skew};
 
 /// A 6×6 block `[[uu, ut], [tu, tt]]` acting on `(u, θ)`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -47,6 +50,16 @@ impl Block6 {
         }
     }
 
+    /// `self · s`.
+    pub fn scale(&self, s: f64) -> Block6 {
+        Block6 {
+            uu: self.uu * s,
+            ut: self.ut * s,
+            tu: self.tu * s,
+            tt: self.tt * s,
+        }
+    }
+
     pub fn add(&mut self, o: &Block6) {
         self.uu += o.uu;
         self.ut += o.ut;
@@ -54,7 +67,7 @@ impl Block6 {
         self.tt += o.tt;
     }
 
-    fn neg(&self) -> Block6 {
+    pub fn neg(&self) -> Block6 {
         Block6 {
             uu: -self.uu,
             ut: -self.ut,
@@ -79,24 +92,56 @@ impl Block6 {
         }
     }
 
-    /// `P(r)`: a coarse node's rigid motion `(U, Θ)` seen at a point `r` from its
-    /// reference point, `(U + Θ × r, Θ)`.
-    pub fn rigid(r: DVec3) -> Block6 {
+    /// The rigid motion of a group seen at a node offset `r` from the group's point,
+    /// `(U, Θ) ↦ (U + Θ × r, Θ)`, given `skew(r)`: `[[I, −skew(r)], [0, I]]`.
+    pub fn rigid_of_skew(s: &DMat3) -> Block6 {
         Block6 {
             uu: DMat3::IDENTITY,
-            ut: -skew(r),
+            ut: -*s,
             tu: DMat3::ZERO,
             tt: DMat3::IDENTITY,
+        }
+    }
+
+    /// `self · rigid_of_skew(s)`, in two 3×3 products instead of eight.
+    pub fn times_rigid(&self, s: &DMat3) -> Block6 {
+        Block6 {
+            uu: self.uu,
+            ut: self.ut - self.uu * *s,
+            tu: self.tu,
+            tt: self.tt - self.tu * *s,
+        }
+    }
+
+    /// `selfᵀ · o`.
+    pub fn transpose_mul(&self, o: &Block6) -> Block6 {
+        let (a, b, c, d) = (
+            self.uu.transpose(),
+            self.tu.transpose(),
+            self.ut.transpose(),
+            self.tt.transpose(),
+        );
+        Block6 {
+            uu: a * o.uu + b * o.tu,
+            ut: a * o.ut + b * o.tt,
+            tu: c * o.uu + d * o.tu,
+            tt: c * o.ut + d * o.tt,
         }
     }
 
     /// The stiffness blocks `(K_aa, K_ab, K_bb)` of one bond's springs (`K_ba = K_abᵀ`):
     /// the relative motion at the face is `δ = J_a·x_a + J_b·x_b` with
     /// `J = ±[I, −skew(r)]`, and the rotations' `θ_b − θ_a`.
+    #[cfg(test)]
     pub fn of_spring(s: &Spring) -> (Block6, Block6, Block6) {
+        Block6::of_local(&LocalSpring::new(s, 0, 1))
+    }
+
+    /// [`Block6::of_spring`] of a spring with local ends.
+    pub fn of_local(s: &LocalSpring) -> (Block6, Block6, Block6) {
         let nn = outer(s.n, s.n);
-        let k = DMat3::from_diagonal(DVec3::splat(s.ks)) + nn * (s.kn - s.ks);
-        let kr = DMat3::from_diagonal(DVec3::splat(s.kb)) + nn * (s.kt - s.kb);
+        let k = DMat3::from_diagonal(DVec3::splat(s.ks)) + nn * s.dn;
+        let kr = DMat3::from_diagonal(DVec3::splat(s.kb)) + nn * s.dt;
         let (sa, sb) = (skew(s.ra), skew(s.rb));
         let block = |si: DMat3, sj: DMat3| Block6 {
             uu: k,
@@ -119,44 +164,11 @@ impl Dense {
     /// Factors the matrix whose `(i, j)` 6×6 block `block(i, j)` gives (lower half read).
     /// A pivot that is not positive (a part with no stiffness) is replaced by a tiny one.
     pub fn factor(nodes: usize, block: impl Fn(usize, usize) -> Option<Block6>) -> Dense {
-        let n = 6 * nodes;
-        let mut a = vec![0.0; n * n];
-        for i in 0..nodes {
-            for j in 0..=i {
-                if let Some(b) = block(i, j) {
-                    let parts = [(b.uu, 0, 0), (b.ut, 0, 3), (b.tu, 3, 0), (b.tt, 3, 3)];
-                    for (m, r0, c0) in parts {
-                        let cols = m.to_cols_array_2d();
-                        for (c, col) in cols.iter().enumerate() {
-                            for (r, &v) in col.iter().enumerate() {
-                                let (row, column) = (6 * i + r0 + r, 6 * j + c0 + c);
-                                if column <= row {
-                                    a[row * n + column] = v;
-                                }
-                            }
-                        }
-                    }
-                }
-            }
+        let mut factor = Factoring::new(nodes, block);
+        while !factor.done() {
+            factor.column();
         }
-        let scale = (0..n).map(|i| a[i * n + i].abs()).fold(0.0, f64::max);
-        let floor = (scale * 1e-14).max(f64::MIN_POSITIVE);
-        for j in 0..n {
-            let mut d = a[j * n + j];
-            for k in 0..j {
-                d -= a[j * n + k] * a[j * n + k];
-            }
-            let d = if d > floor { d.sqrt() } else { floor.sqrt() };
-            a[j * n + j] = d;
-            for i in j + 1..n {
-                let mut v = a[i * n + j];
-                for k in 0..j {
-                    v -= a[i * n + k] * a[j * n + k];
-                }
-                a[i * n + j] = v / d;
-            }
-        }
-        Dense { n, l: a }
+        factor.finish()
     }
 
     /// Solves in place; `x` holds `(u, θ)` per node.
@@ -182,6 +194,94 @@ impl Dense {
         for (i, (u, t)) in x.iter_mut().enumerate() {
             *u = DVec3::new(v[6 * i], v[6 * i + 1], v[6 * i + 2]);
             *t = DVec3::new(v[6 * i + 3], v[6 * i + 4], v[6 * i + 5]);
+        }
+    }
+}
+
+/// A dense Cholesky factorisation under way, a column at a time (see [`Dense::factor`]).
+#[derive(Debug, Clone)]
+pub(super) struct Factoring {
+    n: usize,
+    a: Vec<f64>,
+    floor: f64,
+    next: usize,
+}
+
+impl Factoring {
+    /// The matrix whose `(i, j)` 6×6 block `block(i, j)` gives (lower half read), not
+    /// factored yet.
+    pub fn new(nodes: usize, block: impl Fn(usize, usize) -> Option<Block6>) -> Factoring {
+        let n = 6 * nodes;
+        let mut a = vec![0.0; n * n];
+        for i in 0..nodes {
+            for j in 0..=i {
+                if let Some(b) = block(i, j) {
+                    let parts = [(b.uu, 0, 0), (b.ut, 0, 3), (b.tu, 3, 0), (b.tt, 3, 3)];
+                    for (m, r0, c0) in parts {
+                        let cols = m.to_cols_array_2d();
+                        for (c, col) in cols.iter().enumerate() {
+                            for (r, &v) in col.iter().enumerate() {
+                                let (row, column) = (6 * i + r0 + r, 6 * j + c0 + c);
+                                if column <= row {
+                                    a[row * n + column] = v;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let scale = (0..n).map(|i| a[i * n + i].abs()).fold(0.0, f64::max);
+        let floor = (scale * 1e-14).max(f64::MIN_POSITIVE);
+        Factoring {
+            n,
+            a,
+            floor,
+            next: 0,
+        }
+    }
+
+    /// The unknowns (six per node).
+    pub fn size(&self) -> usize {
+        self.n
+    }
+
+    pub fn done(&self) -> bool {
+        self.next >= self.n
+    }
+
+    /// Factors the next column; returns its multiply-adds.
+    pub fn column(&mut self) -> usize {
+        let (n, j, a) = (self.n, self.next, &mut self.a);
+        if j >= n {
+            return 0;
+        }
+        let mut d = a[j * n + j];
+        for k in 0..j {
+            d -= a[j * n + k] * a[j * n + k];
+        }
+        let d = if d > self.floor {
+            d.sqrt()
+        } else {
+            self.floor.sqrt()
+        };
+        a[j * n + j] = d;
+        for i in j + 1..n {
+            let mut v = a[i * n + j];
+            for k in 0..j {
+                v -= a[i * n + k] * a[j * n + k];
+            }
+            a[i * n + j] = v / d;
+        }
+        self.next += 1;
+        (n - j) * (j + 1)
+    }
+
+    /// The factor (all columns factored).
+    pub fn finish(self) -> Dense {
+        Dense {
+            n: self.n,
+            l: self.a,
         }
     }
 }

@@ -32,10 +32,15 @@
 mod block;
 mod graph;
 mod limits;
+mod local;
 mod multigrid;
 #[cfg(test)]
 mod multigrid_tests;
+#[cfg(test)]
+mod slicing_tests;
 mod solver;
+#[cfg(test)]
+mod split_tests;
 mod spring;
 #[cfg(test)]
 mod tests;

@@ -22,7 +22,7 @@ pub(super) struct Spring {
 
 impl Spring {
     /// Force on `b`'s side and moment of the bond for the state `(u, θ)`.
-    #[inline]
+    #[cfg(test)]
     pub fn load(&self, u: &[DVec3], t: &[DVec3]) -> (DVec3, DVec3) {
         let (a, b) = (self.a as usize, self.b as usize);
         let d = (u[b] + t[b].cross(self.rb)) - (u[a] + t[a].cross(self.ra));

@@ -12,6 +12,7 @@ mod upkeep;
 
 pub use query::ProjectileView;
 pub use settings::{
-    BreakCause, DEFAULT_STRESS_BUDGET, ObjectId, RunState, SimEvent, Stats, WorldSettings,
+    BreakCause, DEFAULT_STRESS_BUDGET, DEFAULT_STRESS_BUILD_BUDGET, DEFAULT_STRESS_SPRING_BUDGET,
+    ObjectId, RunState, SimEvent, Stats, WorldSettings,
 };
 pub use state::World;

@@ -5,9 +5,26 @@ use glam::Vec3;
 use crate::object::BondModel;
 
 /// [`WorldSettings::stress_budget`] by default. Every shipped scene's solves converge
-/// within it at every step (the most is 49 iterations, in `collapse.toml`), so they run
-/// as without a budget; a 20,000-bond wall (88 iterations cold) takes two steps.
+/// within it at every step, so they run as without a budget; a large object is held back
+/// by [`DEFAULT_STRESS_SPRING_BUDGET`] first.
 pub const DEFAULT_STRESS_BUDGET: usize = 64;
+
+/// [`WorldSettings::stress_spring_budget`] by default: springs the stress solver visits per
+/// object per step, about a millisecond of one core. A 20,000-bond object's solve then
+/// advances one conjugate-gradient iteration per step (a hit on a 20,000-bond wall is
+/// judged about 35 steps later); objects under 2,000 bonds do a dozen or more and
+/// converge within a step or two.
+pub const DEFAULT_STRESS_SPRING_BUDGET: usize = 24_000;
+
+/// [`WorldSettings::stress_build_budget`] by default: block operations of multigrid
+/// hierarchy building per object per step, 1.2 to 1.7 ms of one core. An island that a
+/// split leaves with less than half of its hierarchy gets its own over the next steps
+/// (about 50 for a 20,000-bond island; one under 400 bonds), using the one it split from
+/// meanwhile, so no step pays for a whole hierarchy. (At 40,000, `collapse.toml` with a
+/// stress budget of 4 iterations kept 87 of its 112 right-hand blocks standing instead of
+/// at least 101: its outcome depends on when each sliced solve converges, and a part
+/// converges a little slower on the hierarchy it split from.)
+pub const DEFAULT_STRESS_BUILD_BUDGET: usize = 100_000;
 
 /// Global settings of a simulation.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -40,6 +57,17 @@ pub struct WorldSettings {
     /// are judged when it has converged (see
     /// [`SolverSettings::budget`](crate::stress::SolverSettings::budget)).
     pub stress_budget: Option<usize>,
+    /// Most springs the stress solver visits per object per step (`None`: no limit):
+    /// each iteration, and each start of a solve, visits all of an object's intact bonds,
+    /// so this bounds the time a large object's solve takes per step where
+    /// `stress_budget` bounds only its iterations (see
+    /// [`SolverSettings::spring_budget`](crate::stress::SolverSettings::spring_budget)).
+    pub stress_spring_budget: Option<usize>,
+    /// Most work per object per step on the stress solver's multigrid hierarchies under
+    /// construction, in block operations (`None`: an island that needs a hierarchy builds
+    /// it at once, in that step; see
+    /// [`SolverSettings::build_budget`](crate::stress::SolverSettings::build_budget)).
+    pub stress_build_budget: Option<usize>,
 }
 
 impl Default for WorldSettings {
@@ -56,6 +84,8 @@ impl Default for WorldSettings {
             solver_iterations: 4,
             stress: true,
             stress_budget: Some(DEFAULT_STRESS_BUDGET),
+            stress_spring_budget: Some(DEFAULT_STRESS_SPRING_BUDGET),
+            stress_build_budget: Some(DEFAULT_STRESS_BUILD_BUDGET),
         }
     }
 }
@@ -89,8 +119,17 @@ pub struct Stats {
     pub stress_solves: u64,
     /// Conjugate-gradient iterations of the stress solver in the last step.
     pub stress_iterations: usize,
-    /// Wall-clock milliseconds the stress solver took in the last step.
+    /// Wall-clock milliseconds of the last step's stress pass: the solves, the bonds they
+    /// break and the bodies those breaks split.
     pub stress_ms: f64,
+    /// Wall-clock milliseconds of the last step's stress solves alone (part of
+    /// `stress_ms`): what the solver's budgets bound.
+    pub stress_solve_ms: f64,
+    /// CPU milliseconds of the stepping thread in the last step's stress solves, with a
+    /// clock set by [`World::set_cpu_clock`](crate::World::set_cpu_clock) (`None`
+    /// without): unlike `stress_solve_ms`, not inflated when other processes share the
+    /// core.
+    pub stress_solve_cpu_ms: Option<f64>,
     /// Bodies removed because their state diverged (NaN or runaway speed).
     pub diverged: usize,
     /// Debris bodies removed by the cap.

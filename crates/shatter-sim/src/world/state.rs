@@ -113,6 +113,8 @@ pub struct World {
     pub(crate) cuts: Vec<PendingCut>,
     /// Files read before the disk when an object names a mesh file ([`World::files`]).
     pub(crate) files: Arc<MemoryFiles>,
+    /// The calling thread's CPU time in nanoseconds, if set ([`World::set_cpu_clock`]).
+    pub(crate) cpu_clock: Option<fn() -> Option<u64>>,
 }
 
 // A world is shared between threads (a Bevy resource, a game's system): on every target,
@@ -142,6 +144,7 @@ impl World {
             reported: BTreeMap::new(),
             cuts: Vec::new(),
             files: Arc::default(),
+            cpu_clock: None,
         };
         world.rebuild();
         world
@@ -178,6 +181,15 @@ impl World {
     /// The settings.
     pub fn settings(&self) -> &WorldSettings {
         &self.settings
+    }
+
+    /// Measures the CPU time of each step's stress solves with `clock` (the calling
+    /// thread's CPU time in nanoseconds, `None` where it cannot be read) into
+    /// [`Stats::stress_solve_cpu_ms`](crate::Stats::stress_solve_cpu_ms); `None` stops
+    /// it. The simulation reads no clock of its own but the wall clock: benchmarks pass
+    /// one (the lab reads `CLOCK_THREAD_CPUTIME_ID`).
+    pub fn set_cpu_clock(&mut self, clock: Option<fn() -> Option<u64>>) {
+        self.cpu_clock = clock;
     }
 
     /// Changes the settings and rebuilds the world (like [`World::reset`]).
@@ -253,7 +265,11 @@ impl World {
             live.stress = StressState::new(
                 &record.prepared,
                 spec.material.limits(),
-                self.settings.stress_budget,
+                (
+                    self.settings.stress_budget,
+                    self.settings.stress_spring_budget,
+                    self.settings.stress_build_budget,
+                ),
             )
             .map(Box::new);
         }

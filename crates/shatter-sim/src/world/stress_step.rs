@@ -48,6 +48,9 @@ impl World {
         }
         let gravity = self.settings.gravity.as_dvec3();
         let (mut iterations, mut solves) = (0, 0);
+        let mut solve_ms = 0.0;
+        let clock = self.cpu_clock;
+        let mut solve_cpu_ns = clock.map(|_| 0u64);
         for (id, record) in self.objects.iter_mut() {
             let Some(live) = record.live.as_mut() else {
                 continue;
@@ -70,9 +73,17 @@ impl World {
             if let Some(list) = contacts.get(&id.0) {
                 forces.extend(list.iter().map(|(f, v)| (*f, to_local * v.as_dvec3())));
             }
+            let t1 = Instant::now();
+            let c1 = clock.and_then(|c| c());
             let report = state
                 .solver
                 .solve(&state.graph, &state.mask, to_local * gravity, &forces);
+            solve_ms += t1.elapsed().as_secs_f64() * 1e3;
+            if let (Some(total), Some(c1), Some(c2)) =
+                (&mut solve_cpu_ns, c1, clock.and_then(|c| c()))
+            {
+                *total += c2.saturating_sub(c1);
+            }
             iterations += report.iterations;
             solves += report.islands_solved;
             let over = state.solver.overloaded(&state.limits);
@@ -110,6 +121,8 @@ impl World {
         self.stats.stress_solves += solves as u64;
         self.stats.stress_iterations = iterations;
         self.stats.stress_ms = t0.elapsed().as_secs_f64() * 1e3;
+        self.stats.stress_solve_ms = solve_ms;
+        self.stats.stress_solve_cpu_ms = solve_cpu_ns.map(|ns| ns as f64 / 1e6);
     }
 
     /// Queues an explosion's push on the fragments of fixed bodies for the next stress

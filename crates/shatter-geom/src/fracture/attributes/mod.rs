@@ -11,6 +11,10 @@
 //! - A surface triangle of no known source (the tetra method builds its fragments from
 //!   tetrahedra, whose outer faces are not cut from the input's triangles) takes the
 //!   input triangle nearest its centroid ([`nearest`]) and interpolates the same way.
+//! - Where the input has no UVs, surface triangles get a box projection instead: the
+//!   planar UVs of the coordinate plane most facing their input triangle ([`Basis::boxed`],
+//!   in the same world-space frame), so every fragment has UVs and the pieces of one
+//!   input triangle share a chart.
 //! - An interior (cap) triangle gets the `interior` material (appended to the input's
 //!   list), its flat normal and planar UVs ([`planar`]): the projection onto the cap's
 //!   plane in a basis that depends on the plane alone, the same for both sides of a bond,
@@ -165,7 +169,8 @@ impl Context<'_> {
     fn fragment(&self, mesh: &TriMesh, tags: &[u64]) -> (Corners, Vec<u32>) {
         let n = mesh.triangles.len();
         let have = self.src.corners;
-        let mut uv = have.uv.as_ref().map(|_| Vec::with_capacity(n));
+        // Every fragment has UVs: the input's where it has them, else a box projection.
+        let mut uv = Vec::with_capacity(n);
         let mut normal = have.normal.as_ref().map(|_| Vec::with_capacity(n));
         let mut color = have.color.as_ref().map(|_| Vec::with_capacity(n));
         let mut material = Vec::with_capacity(n);
@@ -200,8 +205,12 @@ impl Context<'_> {
                     };
                     let w = p.map(|q| barycentric(st, q + shift, clamp));
                     material.push(self.src.material.map_or(0, |m| m[s]));
-                    if let (Some(out), Some(v)) = (&mut uv, &have.uv) {
-                        out.push(w.map(|w| to_f32(mix(&v[s], w))));
+                    match &have.uv {
+                        Some(v) => uv.push(w.map(|w| to_f32(mix(&v[s], w)))),
+                        None => {
+                            let basis = Basis::boxed(flat_normal(st));
+                            uv.push(p.map(|q| self.frame.uv(&basis, q)));
+                        }
                     }
                     if let (Some(out), Some(v)) = (&mut normal, &have.normal) {
                         let flat = flat_normal(p);
@@ -221,7 +230,9 @@ impl Context<'_> {
                     } else {
                         self.interior
                     });
-                    let basis = if is_surface(tag) || tag == OWN_PLANE {
+                    let basis = if is_surface(tag) {
+                        Basis::boxed(flat_normal(p))
+                    } else if tag == OWN_PLANE {
                         Basis::of_triangle(p)
                     } else {
                         self.bases
@@ -229,9 +240,7 @@ impl Context<'_> {
                             .copied()
                             .unwrap_or_else(|| Basis::of_triangle(p))
                     };
-                    if let Some(out) = &mut uv {
-                        out.push(p.map(|q| self.frame.uv(&basis, q)));
-                    }
+                    uv.push(p.map(|q| self.frame.uv(&basis, q)));
                     if let Some(out) = &mut normal {
                         // The plane's normal, turned to the triangle's side.
                         let n = if basis.n.dot(flat_normal(p)) < 0.0 {
@@ -247,6 +256,13 @@ impl Context<'_> {
                 }
             }
         }
-        (Corners { uv, normal, color }, material)
+        (
+            Corners {
+                uv: Some(uv),
+                normal,
+                color,
+            },
+            material,
+        )
     }
 }

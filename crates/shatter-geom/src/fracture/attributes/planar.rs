@@ -13,6 +13,17 @@ use crate::util::FastMap;
 /// surface tags and above any cap plane id the methods make.
 pub(crate) const OWN_PLANE: u64 = (1 << 63) - 1;
 
+/// Unit-normal components closer than this to the largest one tie with it.
+pub(crate) const TIE: f64 = 1e-6;
+
+/// The axis a unit normal is most along: the first whose component is within [`TIE`]
+/// of the largest in magnitude.
+fn dominant_axis(n: DVec3) -> usize {
+    let a = n.abs();
+    let top = a.max_element();
+    (0..3).find(|&k| a[k] >= top - TIE).unwrap_or(0)
+}
+
 /// An orthonormal basis `(u, v, n)` of a plane, `n` its unit normal up to sign.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Basis {
@@ -23,9 +34,13 @@ pub(crate) struct Basis {
 
 impl Basis {
     /// The canonical basis of the plane with normal `±normal`: `n` is the normal turned
-    /// so that its largest component (the first of equals) is positive, `u` the next
-    /// axis (cyclically) made orthogonal to `n`, `v = n × u`. Both orientations of a
-    /// plane give the same basis.
+    /// so that its largest component is positive, `u` the next axis (cyclically) made
+    /// orthogonal to `n`, `v = n × u`. Both orientations of a plane give the same basis.
+    ///
+    /// Components within [`TIE`] of the largest count as equal and the first of them
+    /// is taken, so two normals of one plane that differ by rounding (the two sides of
+    /// a crack, or two cuts in nearly the same plane) pick the same axis even for a
+    /// plane at 45° to two axes, where "the largest" alone would follow the rounding.
     pub fn canonical(normal: DVec3) -> Basis {
         let Some(n) = normal.try_normalize() else {
             return Basis {
@@ -34,14 +49,7 @@ impl Basis {
                 n: DVec3::Z,
             };
         };
-        let a = n.abs();
-        let k = if a.x >= a.y && a.x >= a.z {
-            0
-        } else if a.y >= a.z {
-            1
-        } else {
-            2
-        };
+        let k = dominant_axis(n);
         let n = if n[k] < 0.0 { -n } else { n };
         // |n[k]| ≥ 1/√3, so the next axis is at least that far from n: no cancellation.
         let e = DVec3::AXES[(k + 1) % 3];
@@ -51,6 +59,15 @@ impl Basis {
             v: n.cross(u),
             n,
         }
+    }
+
+    /// The box-projection basis for a surface of normal `normal`: the canonical basis of
+    /// the coordinate axis `normal` is most along (the first of equals), so a texture is
+    /// projected along that axis as a box mapping does, and nearby triangles facing the
+    /// same way share one chart.
+    pub fn boxed(normal: DVec3) -> Basis {
+        let n = normal.normalize_or_zero();
+        Basis::canonical(DVec3::AXES[dominant_axis(n)])
     }
 
     /// The canonical basis of a triangle's plane, from its corners sorted by position

@@ -12,6 +12,7 @@ pub(crate) mod inherit;
 mod piece;
 mod plane;
 pub(crate) mod polytope;
+mod solids;
 pub(crate) mod union;
 
 #[cfg(test)]
@@ -22,3 +23,4 @@ pub(crate) mod fast_path_tests;
 pub(crate) use face::Face;
 pub(crate) use piece::{Piece, SURFACE, is_surface, mesh_scale, source_triangle};
 pub(crate) use plane::Plane;
+pub(crate) use solids::with_cavities;

@@ -47,7 +47,7 @@ pub(crate) fn slice(mesh: &Piece, planes: &[(DVec3, DVec3)], eps: f64) -> (Vec<P
                 [Some(neg), Some(pos)] => {
                     for side in [neg, pos] {
                         if !side.is_empty() {
-                            next.extend(side.components());
+                            next.extend(side.solids());
                         }
                     }
                 }

@@ -163,7 +163,7 @@ fn cut_cell(mesh: &Piece, mut planes: Vec<Plane>, eps: f64) -> Vec<Piece> {
     }
     let mut cell = cell.unwrap_or_else(|| mesh.clone());
     cell.close_faces();
-    cell.components()
+    cell.solids()
 }
 
 /// The planes that bound seed `i`'s cell, nearest first (the order in which equally good

@@ -131,22 +131,21 @@ pub fn repair(
     report.shells = kept.len();
     if options.union && needs_union(&soup) {
         let before = soup.tris.len();
-        soup = union::union(&soup).map_err(|e| RepairError::Union(e.0))?;
-        // The union's vertices are rounded to f64 once each, which can leave a few
-        // triangles touching; the union of that settles them (bounded rounds).
-        for _ in 0..3 {
-            if !needs_union(&soup) {
-                break;
-            }
-            soup = union::union(&soup).map_err(|e| RepairError::Union(e.0))?;
-        }
+        let united = union::union(&soup, diagonal).map_err(|e| RepairError::Union(e.0))?;
+        soup = united.soup;
+        let snapped = united.snapped;
+        let snap = union::SNAP_TOLERANCE * diagonal;
         let slivers = drop_flat_shells(&mut soup, flat);
-        let shells = kept.len();
+        let (rounding_crossings, rounding_depth) = crossings(&soup);
         report.union = Some(UnionReport {
-            shells,
+            shells: kept.len(),
             triangles_before: before,
             triangles_after: soup.tris.len(),
             sliver_shells_dropped: slivers,
+            snapped_coordinates: snapped,
+            snap_tolerance: snap,
+            rounding_crossings,
+            rounding_depth,
         });
         report.shells = soup.mesh().check().components;
     }
@@ -240,6 +239,23 @@ fn needs_union(soup: &Soup) -> bool {
         return true;
     }
     !mesh.self_intersections(1).is_empty()
+}
+
+/// Pairs of triangles of the soup that touch or cross (sharing no vertex), and the depth
+/// of the deepest crossing (`mesh::intersect`'s measure, in model units).
+fn crossings(soup: &Soup) -> (usize, f64) {
+    let mesh = soup.mesh();
+    let pairs = mesh.self_intersections(usize::MAX);
+    let depth = pairs
+        .iter()
+        .map(|&(a, b)| {
+            crate::mesh::intersect::crossing_depth(
+                mesh.triangle(a as usize),
+                mesh.triangle(b as usize),
+            )
+        })
+        .fold(0.0, f64::max);
+    (pairs.len(), depth)
 }
 
 /// The error when no closed part is left.

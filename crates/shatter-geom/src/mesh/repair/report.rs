@@ -44,6 +44,18 @@ pub struct UnionReport {
     /// a millionth of a millionth of the bounding box's), dropped: slivers the rounding
     /// of the union's exact vertices to f64 leaves where parts met face to face.
     pub sliver_shells_dropped: usize,
+    /// Coordinates snapped together before the union (within `snap_tolerance`, axis by
+    /// axis), so parts meeting face to face a rounding error apart meet on one plane.
+    pub snapped_coordinates: usize,
+    /// The snapping tolerance (model units).
+    pub snap_tolerance: f64,
+    /// Pairs of the union's triangles that rounding its exact vertices to `f64` left
+    /// touching or crossing (sharing no vertex).
+    pub rounding_crossings: usize,
+    /// How deep the deepest of them crosses (model units): what the fracture's
+    /// validation compares with its tolerance
+    /// ([`CROSSING_TOLERANCE`](crate::mesh::CROSSING_TOLERANCE) of the size).
+    pub rounding_depth: f64,
 }
 
 /// What [`repair`](super::repair) did, with counts. Every field is zero (or `None`) for
@@ -184,6 +196,22 @@ impl RepairReport {
                 "{} closed shells cross or touch: replaced by their union ({} triangles, was {})",
                 u.shells, u.triangles_after, u.triangles_before
             ));
+            if u.snapped_coordinates > 0 {
+                out.push(format!(
+                    "snapped {} coordinates within {:e} before the union (parts meeting face \
+                     to face)",
+                    u.snapped_coordinates, u.snap_tolerance
+                ));
+            }
+            if u.rounding_crossings > 0 {
+                let n = u.rounding_crossings;
+                out.push(format!(
+                    "{n} pair{} of the union's triangles touch or cross after rounding, by at \
+                     most {:e}",
+                    s(n),
+                    u.rounding_depth
+                ));
+            }
             if u.sliver_shells_dropped > 0 {
                 let n = u.sliver_shells_dropped;
                 out.push(format!(

@@ -163,13 +163,6 @@ impl Soup {
         }
     }
 
-    /// Flat unit normal of a would-be triangle, as f32 (zero when degenerate).
-    pub fn flat_normal(&self, tri: [u32; 3]) -> [f32; 3] {
-        let [a, b, c] = tri.map(|i| self.pos[i as usize]);
-        let n = (b - a).cross(c - a).normalize_or_zero();
-        [n.x as f32, n.y as f32, n.z as f32]
-    }
-
     /// Signed volume of the triangles `tris` select (about `origin`).
     pub fn volume_of(&self, tris: &[u32], origin: DVec3) -> f64 {
         tris.iter()

@@ -255,3 +255,55 @@ fn a_union_keeps_the_materials_and_interpolates_the_uvs_of_the_faces_it_lies_on(
     }
     assert_eq!(seen, [true, true]);
 }
+
+#[test]
+fn parts_meeting_face_to_face_a_rounding_error_apart_become_one_solid() {
+    // Two boxes side by side along x, the second's touching face 1e-12 inside the
+    // first (a 32-bit coordinate through a transform does this).
+    let a = shapes::cube();
+    let mut b = a.transformed(DVec3::ONE, DVec3::new(1.0, 0.25, 0.25));
+    for p in &mut b.positions {
+        if p.x < 0.75 {
+            p.x -= 1e-12;
+        }
+    }
+    let (m, r) = run(TriMesh::merge(&[a, b]));
+    assert!(r.union.is_some());
+    assert_eq!(m.mesh.validate_solid(), Ok(()));
+    assert!((m.mesh.volume() - 2.0).abs() < 1e-9, "{}", m.mesh.volume());
+}
+
+#[test]
+fn coordinates_a_rounding_error_apart_are_snapped_axis_by_axis() {
+    let mut soup = soup::Soup::from_model(&Model::from_mesh(shapes::cube()));
+    // x: 0.5 and 0.5 + 1e-9 join (a run starts at its lowest value); 0.5 + 3e-9 is more
+    // than the tolerance beyond its neighbour and stays.
+    soup.pos[0].x = 0.5;
+    soup.pos[1].x = 0.5 + 1e-9;
+    soup.pos[2].x = 0.5 + 3e-9;
+    let before: Vec<DVec3> = soup.pos.clone();
+    let changed = weld::coordinates(&mut soup, 1.5e-9);
+    assert_eq!(soup.pos[1].x, 0.5);
+    assert_eq!(soup.pos[2].x, 0.5 + 3e-9);
+    // Nothing else moved: the cube's other coordinates are ±0.5 exactly, or equal.
+    assert_eq!(changed, 1);
+    for (p, q) in soup.pos.iter().zip(&before).skip(3) {
+        assert_eq!(p, q);
+    }
+    // A run never spans more than four tolerances: a chain 0, 1, 2, … 9 (step 1 with
+    // tolerance 1.5) is cut into runs each starting at its first value.
+    let mut chain = soup::Soup::from_model(&Model::from_mesh(shapes::cube()));
+    for (k, p) in chain.pos.iter_mut().enumerate().take(10) {
+        p.y = 10.0 + k as f64;
+    }
+    weld::coordinates(&mut chain, 1.5);
+    let ys: Vec<f64> = chain.pos.iter().take(10).map(|p| p.y).collect();
+    assert!(ys.windows(2).all(|w| w[1] >= w[0]));
+    for (k, y) in ys.iter().enumerate() {
+        assert!(10.0 + k as f64 - y <= 6.0 + 1e-12, "{ys:?}");
+    }
+    assert!(
+        ys.iter().any(|&y| y > 10.0),
+        "one run swallowed the chain: {ys:?}"
+    );
+}

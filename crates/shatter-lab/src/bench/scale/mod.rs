@@ -19,6 +19,8 @@ use shatter_geom::budget::{Estimate, format_count};
 use shatter_sim::scene::budget::{bodies_estimate, run_estimate};
 use shatter_sim::{BondModel, Pose};
 
+#[doc(hidden)]
+pub use worlds::build as build_world;
 pub use worlds::{ScaleCase, bricks, grid_for};
 
 use crate::bench::step::steps_of;
@@ -72,6 +74,22 @@ pub struct ScaleRow {
     /// processes on a busy machine (the step runs on one thread). The kernel counts it at
     /// its scheduler tick (a few ms), so it is a mean only, and rough for short runs.
     pub cpu_mean_ms: Option<f64>,
+    /// Mean wall-clock milliseconds of the step's stress pass (`Stats::stress_ms`: the
+    /// solves, the bonds they break and the splits that follow), over every step.
+    pub stress_mean_ms: f64,
+    /// Its largest.
+    pub stress_max_ms: f64,
+    /// Mean wall-clock milliseconds of the step's stress solves alone
+    /// (`Stats::stress_solve_ms`), over every step.
+    pub solve_mean_ms: f64,
+    /// Its largest.
+    pub solve_max_ms: f64,
+    /// Mean CPU milliseconds of the stepping thread in the step's stress solves
+    /// (`Stats::stress_solve_cpu_ms`), over every step (`None` where the thread's CPU time
+    /// cannot be read).
+    pub solve_cpu_mean_ms: Option<f64>,
+    /// Its largest.
+    pub solve_cpu_max_ms: Option<f64>,
     /// Rigid bodies at the end (fragments' bodies and projectiles; not the ground).
     pub bodies: usize,
     /// Dynamic bodies asleep at the end.
@@ -207,11 +225,22 @@ impl ScaleConfig {
     }
 }
 
-/// CPU time of the calling thread in nanoseconds (Linux: `/proc/thread-self/schedstat`'s
-/// first field), `None` where it cannot be read.
-fn thread_cpu_ns() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
-    text.split_whitespace().next()?.parse().ok()
+/// CPU time of the calling thread in nanoseconds (`CLOCK_THREAD_CPUTIME_ID`), `None`
+/// where it cannot be read.
+#[cfg(unix)]
+pub fn thread_cpu_ns() -> Option<u64> {
+    use rustix::time::{ClockId, clock_gettime};
+    let t = clock_gettime(ClockId::ThreadCPUTime);
+    u64::try_from(t.tv_sec)
+        .ok()?
+        .checked_mul(1_000_000_000)?
+        .checked_add(u64::try_from(t.tv_nsec).ok()?)
+}
+
+/// CPU time of the calling thread: not read on this platform.
+#[cfg(not(unix))]
+pub fn thread_cpu_ns() -> Option<u64> {
+    None
 }
 
 /// Fragments with a body in both lists whose pose is the same in both.
@@ -248,6 +277,11 @@ fn measure(
     world.start();
     let steps = config.steps;
     let (mut total, mut max) = (0.0f64, 0.0f64);
+    let (mut stress_total, mut stress_max) = (0.0f64, 0.0f64);
+    let (mut solve_total, mut solve_max) = (0.0f64, 0.0f64);
+    let (mut solve_cpu_total, mut solve_cpu_max) = (0.0f64, 0.0f64);
+    let mut solve_cpu_read = true;
+    world.set_cpu_clock(Some(thread_cpu_ns));
     let mut before = if steps == 1 {
         world.fragment_poses(id)
     } else {
@@ -258,6 +292,19 @@ fn measure(
         let ms = world.stats().last_step_ms;
         total += ms;
         max = max.max(ms);
+        let stress = world.stats().stress_ms;
+        stress_total += stress;
+        stress_max = stress_max.max(stress);
+        let solve = world.stats().stress_solve_ms;
+        solve_total += solve;
+        solve_max = solve_max.max(solve);
+        match world.stats().stress_solve_cpu_ms {
+            Some(cpu) => {
+                solve_cpu_total += cpu;
+                solve_cpu_max = solve_cpu_max.max(cpu);
+            }
+            None => solve_cpu_read = false,
+        }
         if done + 1 == steps {
             before = world.fragment_poses(id);
         }
@@ -278,6 +325,13 @@ fn measure(
         mean_ms: total / steps as f64,
         max_ms: max,
         cpu_mean_ms,
+        stress_mean_ms: stress_total / steps as f64,
+        stress_max_ms: stress_max,
+        solve_mean_ms: solve_total / steps as f64,
+        solve_max_ms: solve_max,
+        solve_cpu_mean_ms: (solve_cpu_read && thread_cpu_ns().is_some())
+            .then(|| solve_cpu_total / steps as f64),
+        solve_cpu_max_ms: (solve_cpu_read && thread_cpu_ns().is_some()).then_some(solve_cpu_max),
         bodies: stats.bodies,
         sleeping_bodies: stats.sleeping_bodies,
         still_fragments: unchanged(&before, &world.fragment_poses(id)),

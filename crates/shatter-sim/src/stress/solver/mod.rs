@@ -7,10 +7,11 @@
 //! springs `E·I/L`, `G·J/L` (`I = A²/12`, `J = A²/6`, a square face) on `θ_b − θ_a`.
 //! Anchored nodes do not move. Loads (gravity `m·g` at every node, plus this step's
 //! dynamic forces) are balanced by the bond forces: `K·x = f`, solved per anchored island
-//! with the conjugate-gradient method, preconditioned by an aggregation multigrid (see
-//! `stress/multigrid.rs`; a 3×3 block-Jacobi preconditioner is the alternative),
-//! warm-started from the last solution. This is the minimum-energy (weighted least-squares) way the
-//! loads flow down to the anchors; force and moment balance hold at every node, so a
+//! with the conjugate-gradient method, preconditioned by a smoothed-aggregation multigrid
+//! (see `stress/multigrid/`; a 3×3 block-Jacobi preconditioner is the alternative),
+//! warm-started from the last solution. Gravity and the dynamic forces are solved as two
+//! cases and added (`islands.rs`). This is the minimum-energy (weighted least-squares)
+//! way the loads flow down to the anchors; force and moment balance hold at every node, so a
 //! cantilever's root carries its weight as shear and its moment as tension on top and
 //! compression below. The stiffness scale `E` cancels out of the stresses; only the
 //! ratio `G/E` matters.
@@ -20,18 +21,23 @@
 //! material around it, not the supports; gravity goes to the anchors.
 //!
 //! Islands without an anchor are not solved: they have no static load path and fall
-//! freely. Settled islands (converged, loads and bonds unchanged) are skipped.
+//! freely. Settled islands (converged, loads and bonds unchanged) are skipped; so is
+//! everything once a hit is gone (the island is back at its gravity solution).
 
-use std::sync::Arc;
-
-use glam::{DMat3, DVec3};
+use glam::DVec3;
 
 use crate::stress::graph::BondGraph;
 use crate::stress::limits::{BondStress, Failure, StressLimits};
-use crate::stress::multigrid::Multigrid;
+use crate::stress::spring::Spring;
 
 mod cg;
-use crate::stress::spring::{Spring, invert, outer, skew};
+mod detach;
+mod hierarchies;
+mod islands;
+
+use cg::Scratch;
+use hierarchies::Hierarchies;
+use islands::IslandState;
 
 /// Nominal Young's modulus (Pa); it cancels out of the stresses.
 const YOUNG: f64 = 1e10;
@@ -54,6 +60,30 @@ pub struct SolverSettings {
     /// contact that presses every step loads its bonds once. No bond breaks on an
     /// unfinished solve.
     pub budget: Option<usize>,
+    /// Most springs visited per [`StressSolver::solve`], summed over the islands (`None`:
+    /// no limit): each conjugate-gradient iteration of an island, and each start of a run
+    /// (its first residual and preconditioning), visits the island's springs once, and an
+    /// iteration's time grows with them. So this, unlike `budget`, bounds a solve's time
+    /// for objects of every size: at the World's default
+    /// ([`DEFAULT_STRESS_SPRING_BUDGET`](crate::DEFAULT_STRESS_SPRING_BUDGET)) a
+    /// 20,000-bond island advances one iteration per solve and a 1,000-bond one 24. An
+    /// island that cannot afford its next start or iteration waits (and so do the islands
+    /// after it), and the springs left are saved for it (up to that cost) and added to the
+    /// next solve's: a 50,000-bond island iterates every third solve, so the springs
+    /// visited per solve average to at most the budget however large the object (one
+    /// solve visits at most the budget plus one unit). What is left goes on at the next
+    /// solve, as with `budget`.
+    pub spring_budget: Option<usize>,
+    /// Most work per [`StressSolver::solve`] on multigrid hierarchies under construction,
+    /// in block operations (a 6×6 block times a vector, 36 multiply-adds; `None`: an
+    /// island builds its hierarchy at once, in the solve that needs it). With a budget,
+    /// an island split from a larger one uses that island's hierarchy (restricted to its
+    /// nodes) and an island with none to use block Jacobi, while its own is built a slice
+    /// per solve; a slice stops at the end of the row of the build that reaches the
+    /// budget. [`StressSolver::prepare`] always builds at once. At the World's default
+    /// ([`DEFAULT_STRESS_BUILD_BUDGET`](crate::DEFAULT_STRESS_BUILD_BUDGET)) a
+    /// 20,000-bond island's hierarchy takes about 50 solves.
+    pub build_budget: Option<usize>,
     /// Shear over normal stiffness, `G/E`.
     pub shear_ratio: f64,
     /// How the conjugate gradients are preconditioned.
@@ -113,6 +143,8 @@ impl Default for SolverSettings {
             tolerance: 1e-5,
             max_iterations: 1000,
             budget: None,
+            spring_budget: None,
+            build_budget: None,
             shear_ratio: 0.4,
             preconditioner: Preconditioner::Multigrid,
         }
@@ -134,51 +166,19 @@ pub struct SolveReport {
     pub residual: f64,
     /// Anchored islands left for a later solve because the budget was spent.
     pub islands_deferred: usize,
-    /// Multigrid hierarchies built (after the bonds changed); an island that only lost
-    /// bonds, or a few nodes, keeps its hierarchy.
+    /// Multigrid hierarchies built or completed (after the bonds changed); an island
+    /// that only lost bonds, or up to half its nodes, keeps its hierarchy.
     pub hierarchies_built: usize,
-}
-
-/// An anchored island being solved.
-#[derive(Debug, Clone, Default)]
-struct IslandState {
-    /// Its free (not anchored) nodes.
-    free: Vec<u32>,
-    /// Its intact bonds.
-    bonds: Vec<u32>,
-    /// Converged with the loads it has; nothing to do until they change.
-    settled: bool,
-    /// Took dynamic forces at its last solve (so it must be solved again without them).
-    dynamic: bool,
-    /// Converged at its last solve.
-    converged: bool,
-    /// Dynamic forces (per node, sorted by node) of an unfinished solve, kept until it
-    /// converges; a later step's force on a node replaces the carried one if stronger.
-    carry: Vec<(u32, DVec3)>,
-    /// `r·z` of conjugate gradients stopped by a limit with the loads unchanged since:
-    /// the next solve resumes them (residual and direction are in the solver's vectors).
-    resume: Option<f64>,
-    /// Its multigrid preconditioner (with [`Preconditioner::Multigrid`]); after bonds
-    /// broke, possibly the hierarchy of the island it split from (see [`Hierarchy`]).
-    multigrid: Option<Arc<Hierarchy>>,
-}
-
-/// A multigrid hierarchy and the free nodes it was built on, in its order.
-///
-/// When bonds break, an island whose free nodes all come from one island, and are most
-/// of it, keeps that island's hierarchy instead of building one (about 90 ms at 20,000
-/// bonds): the residual is restricted to its nodes (zero on the others) and the
-/// correction read back on them, `M' = Sᵀ·M·S` for the selection `S`, which is still
-/// symmetric and positive definite, so the conjugate gradients still converge to the
-/// solution of the island's own springs, in a few more iterations. The hierarchy is
-/// built afresh once the island has lost more than a twentieth of its nodes (the
-/// preconditioner's quality falls with each node lost: on `collapse.toml`, keeping it
-/// down to three quarters took 2.5 times the iterations, down to 95 % 1.25 times).
-#[derive(Debug)]
-pub(super) struct Hierarchy {
-    pub multigrid: Multigrid,
-    /// The free nodes of the island it was built for (indices into the graph).
-    pub nodes: Vec<u32>,
+    /// Work done on hierarchies under construction, in block operations (see
+    /// [`SolverSettings::build_budget`]).
+    pub build_work: usize,
+    /// Whether the islands were rebuilt from the bond mask, every bond read (an island
+    /// split into parts that each have an anchor, or into large ones); bonds that break
+    /// with a detour between their ends, or cut off small pieces without an anchor, are
+    /// taken off in place.
+    pub rebuilt: bool,
+    /// Springs visited by starts and iterations (see [`SolverSettings::spring_budget`]).
+    pub springs: usize,
 }
 
 /// The stress solver of one bond graph; keeps its solution between solves.
@@ -227,20 +227,30 @@ pub struct StressSolver {
     gravity: DVec3,
     /// Mean bond length: torque residuals are divided by it to compare with forces.
     length_scale: f64,
-    xu: Vec<DVec3>,
-    xt: Vec<DVec3>,
-    ru: Vec<DVec3>,
-    rt: Vec<DVec3>,
-    pu: Vec<DVec3>,
-    pt: Vec<DVec3>,
-    qu: Vec<DVec3>,
-    qt: Vec<DVec3>,
-    fu: Vec<DVec3>,
-    pre_u: Vec<DMat3>,
-    pre_t: Vec<DMat3>,
+    /// The multigrid hierarchies the islands use.
+    hierarchies: Hierarchies,
+    /// Rebuilds of the islands so far.
+    rebuilds: u64,
+    /// Springs of the spring budget saved by solves that could not afford an island's
+    /// next start or iteration (see [`SolverSettings::spring_budget`]).
+    credit: usize,
+    scratch: Scratch,
+    /// Per node, the search that last reached it (see `islands.rs`, `detour`).
+    seen: Vec<u32>,
+    stamp: u32,
     stress: Vec<BondStress>,
     /// Islands solved by the last solve.
     last_solved: Vec<u32>,
+}
+
+/// What [`StressSolver::solve_island`] did.
+pub(super) struct Outcome {
+    pub iterations: usize,
+    /// Starts and iterations.
+    pub units: usize,
+    /// Relative residual.
+    pub residual: f64,
+    pub converged: bool,
 }
 
 impl StressSolver {
@@ -250,7 +260,6 @@ impl StressSolver {
         let nodes = graph.nodes();
         let springs = springs(graph, &settings);
         let n = nodes.len();
-        let zeros = vec![DVec3::ZERO; n];
         let lengths: f64 = graph
             .bonds()
             .iter()
@@ -273,17 +282,12 @@ impl StressSolver {
             local: vec![u32::MAX; n],
             gravity: DVec3::ZERO,
             length_scale,
-            xu: zeros.clone(),
-            xt: zeros.clone(),
-            ru: zeros.clone(),
-            rt: zeros.clone(),
-            pu: zeros.clone(),
-            pt: zeros.clone(),
-            qu: zeros.clone(),
-            qt: zeros.clone(),
-            fu: zeros,
-            pre_u: vec![DMat3::IDENTITY; n],
-            pre_t: vec![DMat3::IDENTITY; n],
+            hierarchies: Hierarchies::default(),
+            rebuilds: 0,
+            credit: 0,
+            scratch: Scratch::default(),
+            seen: vec![0; n],
+            stamp: 0,
             stress: vec![BondStress::default(); graph.bonds().len()],
             last_solved: Vec::new(),
         }
@@ -292,6 +296,17 @@ impl StressSolver {
     /// The settings.
     pub fn settings(&self) -> &SolverSettings {
         &self.settings
+    }
+
+    /// Builds the anchored islands of the intact bonds (`broken[b]`: bond `b` is gone) and
+    /// their preconditioners, which the first [`StressSolver::solve`] with this mask would
+    /// otherwise build: an object's creation can pay for it once, so that no step does.
+    /// Returns the multigrid hierarchies built.
+    pub fn prepare(&mut self, graph: &BondGraph, broken: &[bool]) -> usize {
+        if self.topology.as_deref() == Some(broken) {
+            return 0;
+        }
+        self.update_topology(graph, broken, true)
     }
 
     /// Solves the anchored islands of the intact bonds (`broken[b]`: bond `b` is gone)
@@ -309,16 +324,23 @@ impl StressSolver {
             .topology
             .as_deref()
             .is_none_or(|t| t.len() != broken.len() || t != broken);
-        let built = if changed {
-            self.rebuild(graph, broken)
+        let rebuilds = self.rebuilds;
+        let mut built = if changed {
+            self.update_topology(graph, broken, false)
         } else {
             0
         };
+        // Hierarchies under construction go on (and are used from this solve if done).
+        let (build_work, completed) =
+            self.advance_builds(self.settings.build_budget.unwrap_or(usize::MAX));
+        built += completed;
         if gravity != self.gravity {
             self.gravity = gravity;
             self.islands.iter_mut().for_each(|i| {
                 i.settled = false;
-                i.resume = None;
+                i.gravity.converged = false;
+                i.gravity.resume = None;
+                i.load_scale = None;
             });
         }
         // This solve's forces, per island.
@@ -334,74 +356,119 @@ impl StressSolver {
         let mut report = SolveReport {
             converged: true,
             hierarchies_built: built,
+            build_work,
+            rebuilt: self.rebuilds != rebuilds,
             ..SolveReport::default()
         };
         let mut budget = self.settings.budget.unwrap_or(usize::MAX);
+        // The springs of this solve, and those saved by the solves before it that could not
+        // afford an iteration.
+        let mut springs_left = self
+            .settings
+            .spring_budget
+            .map_or(usize::MAX, |b| b.saturating_add(self.credit));
+        // The next unit of the first island that could not afford one.
+        let mut owed = 0;
         self.last_solved.clear();
         for (i, fresh) in by_island.into_iter().enumerate() {
             let island = &mut self.islands[i];
-            if island.settled && !island.dynamic && fresh.is_empty() && island.carry.is_empty() {
+            if island.settled && !island.had_forces && fresh.is_empty() && island.carry.is_empty() {
                 report.islands_skipped += 1;
                 continue;
             }
             // The loads of this solve: those of an unfinished solve, each node's replaced
             // by this step's if stronger (never summed: a contact that presses every step
             // is one force, not one more each step).
-            let changed = merge_strongest(&mut island.carry, fresh);
-            if changed {
-                island.resume = None;
+            if merge_strongest(&mut island.carry, fresh) {
+                island.dynamic.converged = false;
+                island.dynamic.resume = None;
+                island.load_scale = None;
             }
-            if budget == 0 {
+            // Starts and iterations this island may have: what is left of the springs.
+            let bonds = island.cost(&self.hierarchies);
+            // Once an island waits for springs, the islands after it wait too, so that the
+            // springs saved are its.
+            let units = match springs_left {
+                usize::MAX => usize::MAX,
+                _ if owed > 0 => 0,
+                left => left / bonds,
+            };
+            if units == 0 && owed == 0 {
+                owed = bonds;
+            }
+            if budget == 0 || units == 0 {
                 // Not solved this time: still owed, with its loads kept for it.
                 island.settled = false;
                 report.islands_deferred += 1;
                 report.converged = false;
                 continue;
             }
-            let resume = island.resume.take();
             let loads = std::mem::take(&mut island.carry);
             let cap = self.settings.max_iterations.min(budget);
-            let outcome = self.solve_island(i, &loads, cap, resume);
+            let outcome = self.solve_island(i, &loads, cap, units);
             budget = budget.saturating_sub(outcome.iterations);
+            let visited = outcome.units.saturating_mul(bonds);
+            springs_left = springs_left.saturating_sub(visited);
+            report.springs += visited;
             let island = &mut self.islands[i];
-            island.dynamic = !loads.is_empty();
+            island.had_forces = !loads.is_empty();
             island.converged = outcome.converged;
-            island.settled = outcome.converged && loads.is_empty();
-            island.resume = outcome.resume;
             if !outcome.converged {
                 island.carry = loads;
             }
+            island.settled = outcome.converged && !island.had_forces;
             report.islands_solved += 1;
             report.iterations += outcome.iterations;
             report.residual = report.residual.max(outcome.residual);
             report.converged &= outcome.converged;
             self.last_solved.push(i as u32);
         }
+        // An island that could not afford a unit has the springs left saved for it, up to
+        // what the unit costs.
+        self.credit = if self.settings.spring_budget.is_some() {
+            springs_left.min(owed)
+        } else {
+            0
+        };
         report
     }
 
-    /// The stresses of bond `b` at the last solve (zero for broken bonds and bonds of
-    /// islands without an anchor).
+    /// The stresses of bond `b` at the last solve of its island that converged (zero for
+    /// broken bonds, bonds of islands without an anchor, and before the first converged
+    /// solve since the bonds changed).
     pub fn stress(&self, b: u32) -> BondStress {
         self.stress.get(b as usize).copied().unwrap_or_default()
     }
 
     /// The force (on `b`'s side, from `a` to `b` positive = pulling `b` back, i.e. the
-    /// bond's normal component is its tension) and the moment that bond `b` carries at the
-    /// last solve, in the graph's frame. Zero for bonds of islands without an anchor.
+    /// bond's normal component is its tension) and the moment that bond `b` carries in
+    /// the current solution, in the graph's frame. Zero for broken bonds and bonds of
+    /// islands without an anchor.
     pub fn bond_load(&self, b: u32) -> (DVec3, DVec3) {
-        match self.springs.get(b as usize) {
-            Some(s)
-                if self.is_supported(s.a)
-                    && self
-                        .topology
-                        .as_ref()
-                        .is_some_and(|t| !t.get(b as usize).copied().unwrap_or(false)) =>
-            {
-                s.load(&self.xu, &self.xt)
-            }
-            _ => (DVec3::ZERO, DVec3::ZERO),
-        }
+        let none = (DVec3::ZERO, DVec3::ZERO);
+        let Some(s) = self.springs.get(b as usize) else {
+            return none;
+        };
+        let intact = self
+            .topology
+            .as_ref()
+            .is_some_and(|t| !t.get(b as usize).copied().unwrap_or(false));
+        let Some(island) = self
+            .node_island
+            .get(s.a as usize)
+            .and_then(|&i| self.islands.get(i as usize))
+            .filter(|_| intact)
+        else {
+            return none;
+        };
+        let Ok(k) = island.bonds.binary_search(&b) else {
+            return none;
+        };
+        let spring = &island.springs.springs[k];
+        let (a, bb) = (spring.a as usize, spring.b as usize);
+        let (f, m) = spring.load(island.gravity.x[a], island.gravity.x[bb]);
+        let (fd, md) = spring.load(island.dynamic.x[a], island.dynamic.x[bb]);
+        (f + fd, m + md)
     }
 
     /// Whether node `f` belongs to an anchored island (one that carries static load).
@@ -429,111 +496,6 @@ impl StressSolver {
         }
         out.sort_unstable_by_key(|(b, _)| *b);
         out
-    }
-
-    /// Rebuilds the anchored islands and their preconditioner from the bond mask; the
-    /// last solution stays as the warm start. Returns how many hierarchies it built.
-    fn rebuild(&mut self, graph: &BondGraph, broken: &[bool]) -> usize {
-        let mut built = 0;
-        // Hierarchies that islands split from this mask may keep: only bonds broke since
-        // (no bond came back, no island grew).
-        let only_broke = self.topology.as_deref().is_some_and(|t| {
-            t.len() == broken.len() && t.iter().zip(broken).all(|(o, n)| !o || *n)
-        });
-        let old_island = std::mem::take(&mut self.node_island);
-        // Forces of unfinished solves stay on their nodes, in whichever island they are now.
-        let mut carried = Vec::new();
-        let old: Vec<Option<Arc<Hierarchy>>> = self
-            .islands
-            .drain(..)
-            .map(|i| {
-                carried.extend(i.carry);
-                i.multigrid.filter(|_| only_broke)
-            })
-            .collect();
-        self.node_island = vec![u32::MAX; self.mass.len()];
-        self.local.iter_mut().for_each(|i| *i = u32::MAX);
-        self.stress
-            .iter_mut()
-            .for_each(|s| *s = BondStress::default());
-        let mut block_u = vec![DMat3::ZERO; self.mass.len()];
-        let mut block_t = vec![DMat3::ZERO; self.mass.len()];
-        for island in graph.islands(broken) {
-            if !island.anchored {
-                for &v in &island.nodes {
-                    self.xu[v as usize] = DVec3::ZERO;
-                    self.xt[v as usize] = DVec3::ZERO;
-                }
-                continue;
-            }
-            let id = self.islands.len() as u32;
-            let mut free = Vec::new();
-            for &v in &island.nodes {
-                self.node_island[v as usize] = id;
-                if self.anchored[v as usize] {
-                    self.xu[v as usize] = DVec3::ZERO;
-                    self.xt[v as usize] = DVec3::ZERO;
-                } else {
-                    self.local[v as usize] = free.len() as u32;
-                    free.push(v);
-                }
-            }
-            for &b in &island.bonds {
-                let s = &self.springs[b as usize];
-                let nn = outer(s.n, s.n);
-                let k = DMat3::from_diagonal(DVec3::splat(s.ks)) + nn * (s.kn - s.ks);
-                let kr = DMat3::from_diagonal(DVec3::splat(s.kb)) + nn * (s.kt - s.kb);
-                for (v, r) in [(s.a, s.ra), (s.b, s.rb)] {
-                    let rx = skew(r);
-                    block_u[v as usize] += k;
-                    block_t[v as usize] += rx.transpose() * k * rx + kr;
-                }
-            }
-            for &v in &free {
-                self.pre_u[v as usize] = invert(block_u[v as usize]);
-                self.pre_t[v as usize] = invert(block_t[v as usize]);
-            }
-            let kept = free
-                .first()
-                .and_then(|&v| old.get(old_island[v as usize] as usize))
-                .and_then(Option::as_ref)
-                .filter(|h| {
-                    let o = old_island[free[0] as usize];
-                    20 * free.len() >= 19 * h.nodes.len()
-                        && free.iter().all(|&v| old_island[v as usize] == o)
-                })
-                .cloned();
-            let multigrid =
-                (self.settings.preconditioner == Preconditioner::Multigrid).then(|| {
-                    kept.unwrap_or_else(|| {
-                        built += 1;
-                        let springs: Vec<&Spring> = island
-                            .bonds
-                            .iter()
-                            .map(|&b| &self.springs[b as usize])
-                            .collect();
-                        Arc::new(Hierarchy {
-                            multigrid: Multigrid::new(&springs, &self.local, &free, &self.centroid),
-                            nodes: free.clone(),
-                        })
-                    })
-                });
-            self.islands.push(IslandState {
-                free,
-                bonds: island.bonds,
-                multigrid,
-                ..IslandState::default()
-            });
-        }
-        carried.sort_unstable_by_key(|(node, _)| *node);
-        for (node, f) in carried {
-            let i = self.node_island[node as usize];
-            if i != u32::MAX {
-                self.islands[i as usize].carry.push((node, f));
-            }
-        }
-        self.topology = Some(broken.to_vec());
-        built
     }
 }
 
@@ -576,7 +538,7 @@ pub(super) fn springs(graph: &BondGraph, settings: &SolverSettings) -> Vec<Sprin
 /// add up) into `carry`, the per-node loads of an unfinished solve (sorted by node):
 /// each node keeps the stronger of its carried and its fresh force. Returns whether
 /// `carry` changed.
-fn merge_strongest(carry: &mut Vec<(u32, DVec3)>, mut fresh: Vec<(u32, DVec3)>) -> bool {
+pub(super) fn merge_strongest(carry: &mut Vec<(u32, DVec3)>, mut fresh: Vec<(u32, DVec3)>) -> bool {
     if fresh.is_empty() {
         return false;
     }

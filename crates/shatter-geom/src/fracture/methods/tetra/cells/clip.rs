@@ -2,7 +2,7 @@
 //! by volume, and split into its connected parts.
 
 use crate::fracture::kernel::clip::clip_keeping_faces;
-use crate::fracture::kernel::{Piece, Plane};
+use crate::fracture::kernel::{Piece, Plane, with_cavities};
 use crate::util::{FastMap, UnionFind};
 
 /// `mesh` clipped by every plane (the convex cell they bound), as its connected parts.
@@ -15,10 +15,12 @@ pub(super) fn clip_cell(mesh: &Piece, planes: Vec<Plane>, eps: f64) -> Vec<Piece
     let finish = |cell: Piece| -> Vec<Piece> {
         let mut cell = cell;
         cell.close_faces();
-        cell.components()
-            .into_iter()
-            .flat_map(split_at_pinched_edges)
-            .collect()
+        with_cavities(
+            cell.components()
+                .into_iter()
+                .flat_map(split_at_pinched_edges)
+                .collect(),
+        )
     };
     let good = |parts: &Vec<Piece>| parts.iter().all(Piece::is_closed);
     let greedy = clip_in_order(mesh, planes.clone(), eps, None).map(finish);
