@@ -75,6 +75,13 @@ fn bench_fracture_reports_the_thesis_and_blender_cases() {
             .unwrap_or_else(|| panic!("no case {name}"))
     };
     assert!(case("bird voronoi 100")["fragments"].as_u64().unwrap() >= 100);
+    // Painting the bird adds attributes, not geometry: the same cut.
+    for key in ["fragments", "bonds"] {
+        assert_eq!(
+            case("bird voronoi 100 painted")[key],
+            case("bird voronoi 100")[key]
+        );
+    }
     assert!(case("cube tetra 500 thesis")["fragments"].as_u64().unwrap() > 1);
     for r in rows {
         assert!(r["mean_ms"].as_f64().unwrap() >= r["min_ms"].as_f64().unwrap());

@@ -1,13 +1,16 @@
 //! The fracture benchmark: the fracture methods timed on the built-in shapes.
 //!
 //! Cases: the bird into 100 Voronoi fragments (the comparison with Blender's Cell
-//! Fracture), the thesis's creation case (cube + 500 random points, tetra), and a few
-//! more rows covering every method. Each case is run `runs` times after one untimed
+//! Fracture), the same bird painted (UVs, smooth normals and colours on every corner, two
+//! materials: what carrying a textured asset's attributes costs), the thesis's creation
+//! case (cube + 500 random points, tetra), and a few more rows covering every method. Each case is run `runs` times after one untimed
 //! warm-up; mean, min and max are reported.
 
 use serde::Serialize;
+use shatter_geom::DVec3;
 use shatter_geom::budget::{Estimate, format_count};
 use shatter_geom::fracture::{Method, Pattern, Placement};
+use shatter_geom::model::{Material, Model};
 use shatter_geom::shapes::Shape;
 
 use crate::bar::Bar;
@@ -25,6 +28,8 @@ pub struct Case {
     pub shape: Shape,
     /// How.
     pub method: Method,
+    /// Whether the shape is painted first ([`paint`]).
+    pub painted: bool,
 }
 
 /// The cases, in the order they run.
@@ -35,6 +40,7 @@ pub fn cases() -> Vec<Case> {
         name,
         shape,
         method,
+        painted: false,
     };
     vec![
         case(
@@ -42,6 +48,14 @@ pub fn cases() -> Vec<Case> {
             Shape::Bird,
             voronoi(100, Pattern::Uniform),
         ),
+        Case {
+            painted: true,
+            ..case(
+                "bird voronoi 100 painted",
+                Shape::Bird,
+                voronoi(100, Pattern::Uniform),
+            )
+        },
         case(
             "cube tetra 500 thesis",
             Shape::Cube,
@@ -170,7 +184,10 @@ impl BenchFracture {
         let mut rows = Vec::new();
         for case in cases() {
             let config = self.config(&case);
-            let (model, _) = load_source(&config)?;
+            let (mut model, _) = load_source(&config)?;
+            if case.painted {
+                paint(&mut model);
+            }
             ctx.progress.check()?;
             let (warm, _, _) = fracture_timed(&model, &config)?;
             let mut times = Vec::with_capacity(self.runs as usize);
@@ -199,6 +216,62 @@ impl BenchFracture {
             rows,
         })
     }
+}
+
+/// Gives `model` what a textured asset carries on every corner, from its positions: UVs
+/// (a spherical projection about the bounding box's centre), smooth normals (each
+/// vertex's area-weighted mean of its triangles' normals) and colours (the position in
+/// the bounding box as RGB), and two materials (the triangles whose centroid has x < the
+/// centre's, and the others).
+pub fn paint(model: &mut Model) {
+    let mesh = &model.mesh;
+    let Some((lo, hi)) = mesh.bounds() else {
+        return;
+    };
+    let centre = (lo + hi) * 0.5;
+    let size = (hi - lo).max(DVec3::splat(f64::MIN_POSITIVE));
+    let mut normal = vec![DVec3::ZERO; mesh.positions.len()];
+    for t in &mesh.triangles {
+        let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+        let n = (b - a).cross(c - a);
+        for &i in t {
+            normal[i as usize] += n;
+        }
+    }
+    let uv = |p: DVec3| {
+        let d = (p - centre).normalize_or_zero();
+        let u = 0.5 + d.z.atan2(d.x) / std::f64::consts::TAU;
+        let v = 0.5 - d.y.clamp(-1.0, 1.0).asin() / std::f64::consts::PI;
+        [u as f32, v as f32]
+    };
+    let corners = |f: &dyn Fn(u32) -> [f32; 4]| -> Vec<[[f32; 4]; 3]> {
+        mesh.triangles.iter().map(|t| t.map(f)).collect()
+    };
+    let color = corners(&|i| {
+        let q = (mesh.positions[i as usize] - lo) / size;
+        [q.x as f32, q.y as f32, q.z as f32, 1.0]
+    });
+    let n = corners(&|i| {
+        let n = normal[i as usize].normalize_or_zero();
+        [n.x as f32, n.y as f32, n.z as f32, 0.0]
+    });
+    model.corners.uv = Some(
+        mesh.triangles
+            .iter()
+            .map(|t| t.map(|i| uv(mesh.positions[i as usize])))
+            .collect(),
+    );
+    model.corners.normal = Some(n.iter().map(|t| t.map(|c| [c[0], c[1], c[2]])).collect());
+    model.corners.color = Some(color);
+    model.material = mesh
+        .triangles
+        .iter()
+        .map(|t| {
+            let x: f64 = t.iter().map(|&i| mesh.positions[i as usize].x).sum();
+            u32::from(x / 3.0 >= centre.x)
+        })
+        .collect();
+    model.materials = vec![Material::named("left"), Material::named("right")];
 }
 
 #[cfg(test)]
@@ -232,6 +305,38 @@ mod tests {
     }
 
     #[test]
+    fn a_painted_bird_is_a_valid_model_whose_fragments_carry_every_attribute() {
+        let mut model = Model::from_mesh(Shape::Bird.mesh());
+        paint(&mut model);
+        assert_eq!(model.check(), Ok(()));
+        let uv = model.corners.uv.as_ref().unwrap();
+        let normal = model.corners.normal.as_ref().unwrap();
+        assert!(
+            uv.iter()
+                .flatten()
+                .all(|c| (0.0..=1.0).contains(&c[0]) && (0.0..=1.0).contains(&c[1]))
+        );
+        assert!(normal.iter().flatten().all(|n| {
+            let l = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+            (l - 1.0).abs() < 1e-5
+        }));
+        // Both materials are used: the bird spans both sides of its centre.
+        assert!(model.material.contains(&0) && model.material.contains(&1));
+        let params = shatter_geom::fracture::FractureParams {
+            method: Method::voronoi(12, Pattern::Uniform),
+            seed: 1,
+        };
+        let result = shatter_geom::fracture::fracture_model(&model, &params).unwrap();
+        let names: Vec<&str> = result.materials.iter().map(|m| m.name.as_str()).collect();
+        assert_eq!(names, ["left", "right", "interior"]);
+        for f in &result.fragments {
+            assert!(
+                f.corners.uv.is_some() && f.corners.normal.is_some() && f.corners.color.is_some()
+            );
+        }
+    }
+
+    #[test]
     fn zero_runs_and_a_tight_time_limit_are_refused_before_any_run() {
         let ctx = Context::quiet(Limits::none());
         assert_eq!(
@@ -245,7 +350,7 @@ mod tests {
         });
         let e = BenchFracture::prepare(5, 0, &tight).unwrap_err();
         assert!(
-            e.to_string().starts_with("--runs 5: 54 fracture runs"),
+            e.to_string().starts_with("--runs 5: 60 fracture runs"),
             "{e}"
         );
     }
