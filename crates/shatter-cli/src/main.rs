@@ -47,7 +47,7 @@ enum Command {
     Tetrahedralize(tetrahedralize::TetrahedralizeArgs),
     /// Export a built-in shape (cube, capsule, cylinder, sphere, torus, bird).
     Shape(shape::ShapeArgs),
-    /// Fracture a mesh into bonded fragments (tetra, voronoi or slice).
+    /// Fracture a mesh into bonded fragments (tetra, voronoi, slice or grid).
     Fracture(fracture::FractureArgs),
     /// What a mesh file holds (shells, holes, volume, materials, UV sets) without fracturing.
     Inspect(inspect::InspectArgs),

@@ -261,9 +261,10 @@ fn the_written_extension_follows_the_json_schema() {
 
 /// The extension's cost in bytes on the bird cut into 100 Voronoi cells (as
 /// `shatter fracture --shape bird --pieces 100 --out bird.glb` does): printed with
-/// `--nocapture`, and bounded (under half the plain file) so that it cannot quietly grow.
+/// `--nocapture`, and bounded (under the plain file's size, whose vertices are shared
+/// where position and attributes agree) so that it cannot quietly grow.
 #[test]
-fn the_extension_costs_less_than_half_the_plain_file() {
+fn the_extension_costs_less_than_the_plain_file() {
     let model = shatter_geom::model::Model::from_mesh(shapes::bird());
     let fr = fracture_model(&model, &voronoi(100, 0)).unwrap();
     let asset = write(&fr, &FractureAssetMeta::default());
@@ -293,7 +294,7 @@ fn the_extension_costs_less_than_half_the_plain_file() {
         12 * points,
     );
     assert!(asset.len() > plain.len());
-    assert!(2 * (asset.len() - plain.len()) < plain.len());
+    assert!(asset.len() - plain.len() < plain.len());
     let (back, _) = io::parse_fracture(&asset, "bird100.glb").unwrap();
     assert_same(&fr, &back, "bird voronoi 100");
 }

@@ -149,7 +149,10 @@ fn a_textured_glb_round_trips_through_glb_with_its_image_embedded() {
     assert_eq!((images[0].width, images[0].height), (211, 211));
     let prim = doc.meshes().next().unwrap().primitives().next().unwrap();
     let reader = prim.reader(|b| Some(&buffers[b.index()].0[..]));
-    assert_eq!(reader.read_tex_coords(0).unwrap().into_f32().count(), 36);
+    // 12 triangles on 24 vertices, four per face, as in the file read: a vertex is
+    // shared where position, normal and UV agree.
+    assert_eq!(reader.read_indices().unwrap().into_u32().count(), 36);
+    assert_eq!(reader.read_tex_coords(0).unwrap().into_f32().count(), 24);
 }
 
 #[test]

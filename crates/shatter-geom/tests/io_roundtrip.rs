@@ -127,25 +127,27 @@ fn glb_round_trip_keeps_volume_topology_nodes_and_materials() {
     let capsule_mesh = gltf.meshes().nth(1).unwrap();
     let counts: Vec<(Option<usize>, usize)> = capsule_mesh
         .primitives()
-        .map(|p| {
-            let n = p.get(&gltf::Semantic::Positions).unwrap().count();
-            (p.material().index(), n / 3)
-        })
+        .map(|p| (p.material().index(), p.indices().unwrap().count() / 3))
         .collect();
     let interior = flags.iter().filter(|&&f| f).count();
     assert_eq!(
         counts,
         [(Some(0), flags.len() - interior), (Some(1), interior)]
     );
-    // Flat normals: every corner of a triangle has its face's normal.
+    // No normals given: no NORMAL (a client computes flat ones), and a vertex shared by
+    // the triangles around it, so a primitive has no more vertices than its positions.
     let (doc, buffers, _) = gltf::import(&path).unwrap();
-    for mesh in doc.meshes() {
+    for (mesh, source) in doc.meshes().zip([&bird, &capsule]) {
         for p in mesh.primitives() {
+            assert!(p.get(&gltf::Semantic::Normals).is_none());
             let r = p.reader(|b| Some(&buffers[b.index()]));
-            let normals: Vec<[f32; 3]> = r.read_normals().unwrap().collect();
-            for tri in normals.chunks(3) {
-                assert!(tri[0] == tri[1] && tri[1] == tri[2]);
-            }
+            let positions: Vec<[f32; 3]> = r.read_positions().unwrap().collect();
+            let mut distinct: Vec<[u32; 3]> =
+                positions.iter().map(|p| p.map(f32::to_bits)).collect();
+            distinct.sort_unstable();
+            distinct.dedup();
+            assert_eq!(distinct.len(), positions.len());
+            assert!(positions.len() <= source.positions.len());
         }
     }
     let back = io::load_mesh(&path).unwrap();
@@ -237,4 +239,58 @@ fn gltf_node_transforms_mirrors_and_strips() {
     for t in 12..14 {
         assert_eq!(m.triangle_normal(t), DVec3::Z);
     }
+}
+
+/// Smooth normals are written, and a vertex is shared where position and attributes
+/// agree: a UV sphere with its own normals has one vertex per position but at its seam.
+#[test]
+fn glb_writes_smooth_normals_and_shares_vertices_where_attributes_agree() {
+    use shatter_geom::model::Model;
+    let sphere = shapes::sphere(24, 12);
+    let mut model = Model::from_mesh(sphere.clone());
+    // Smooth normals: the direction from the centre. UVs: longitude and latitude, so
+    // the corners at longitude 0 differ between the two sides of the seam.
+    let corner = |p: DVec3| p.normalize();
+    model.corners.normal = Some(
+        sphere
+            .triangles
+            .iter()
+            .map(|t| t.map(|i| corner(sphere.positions[i as usize]).as_vec3().to_array()))
+            .collect(),
+    );
+    let dir = temp_dir("glb_smooth");
+    let path = dir.join("sphere.glb");
+    let fracture = shatter_geom::fracture::intact(&model).unwrap();
+    io::save_glb_with_materials(
+        &path,
+        &[ExportObject::new("sphere", &fracture.fragments[0].mesh)
+            .with_corners(&fracture.fragments[0].corners)],
+        &fracture.materials,
+    )
+    .unwrap();
+    let (doc, buffers, _) = gltf::import(&path).unwrap();
+    let p = doc.meshes().next().unwrap().primitives().next().unwrap();
+    let r = p.reader(|b| Some(&buffers[b.index()]));
+    let normals: Vec<[f32; 3]> = r
+        .read_normals()
+        .expect("smooth normals are written")
+        .collect();
+    let positions: Vec<[f32; 3]> = r.read_positions().unwrap().collect();
+    for (n, q) in normals.iter().zip(&positions) {
+        let want = corner(DVec3::from(q.map(f64::from)));
+        assert!((DVec3::from(n.map(f64::from)) - want).length() < 1e-5);
+    }
+    // The sphere has UVs (a box projection, made by the fracture): seams split a few
+    // positions, but far fewer than the three per triangle a per-corner writer makes.
+    let triangles = p.indices().unwrap().count() / 3;
+    assert_eq!(triangles, sphere.triangles.len());
+    assert!(positions.len() >= sphere.positions.len());
+    assert!(
+        positions.len() < 2 * sphere.positions.len(),
+        "{}",
+        positions.len()
+    );
+    let back = io::load_model(&path).unwrap().model;
+    assert_eq!(back.mesh.triangles.len(), sphere.triangles.len());
+    assert!(back.corners.normal.is_some());
 }

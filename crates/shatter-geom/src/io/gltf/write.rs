@@ -10,7 +10,6 @@ use std::io::Write;
 use std::path::Path;
 use std::sync::Arc;
 
-use glam::Vec3;
 use serde_json::{Value, json};
 
 use crate::io::export::ExportMaterials;
@@ -115,8 +114,9 @@ impl GlbBuilder {
         self.accessors.len() - 1
     }
 
-    fn push_indices(&mut self, count: usize) -> usize {
-        let bytes: Vec<u8> = (0..count as u32).flat_map(|i| i.to_le_bytes()).collect();
+    fn push_indices(&mut self, indices: &[u32]) -> usize {
+        let count = indices.len();
+        let bytes: Vec<u8> = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
         let view = self.push_view(&bytes, Some(ELEMENT_ARRAY_BUFFER));
         self.accessors.push(json!({
             "bufferView": view,
@@ -170,8 +170,10 @@ impl GlbBuilder {
     }
 
     /// Adds `object` as a mesh with one primitive per material its triangles use
-    /// (`material(t)` gives triangle `t`'s material index in the document). Vertices
-    /// are split per corner: flat normals where the object has none. Returns the mesh
+    /// (`material(t)` gives triangle `t`'s material index in the document). A primitive
+    /// has one vertex per distinct position and attributes (a seam or a crease is two),
+    /// and NORMAL only when the object has normals (a client computes flat normals
+    /// where NORMAL is absent, as glTF 2.0 asks). Returns the mesh
     /// index, or `None` for an object without triangles. The object is not validated
     /// here: [`write_glb_with_materials`] does that.
     pub fn add_mesh(
@@ -193,41 +195,57 @@ impl GlbBuilder {
         }
         by_material.sort_by_key(|(m, _)| *m);
         let corners = object.corners;
+        let normal = corners.and_then(|c| c.normal.as_ref());
+        let uv = corners.and_then(|c| c.uv.as_ref());
+        let color = corners.and_then(|c| c.color.as_ref());
         let mut primitives = Vec::new();
         for (m, tris) in by_material {
+            // NORMAL only when the object has normals: without it a client computes
+            // flat normals itself (glTF 2.0, "Meshes"), and a vertex then needs no copy
+            // per face, so the faces stay joined when imported.
+            let with_normals = normal.is_some();
+            // One vertex per distinct position and attributes (bits; -0 is 0).
+            let bits = |v: &[f32]| v.iter().map(|x| (x + 0.0).to_bits()).collect::<Vec<_>>();
+            let mut index: HashMap<Vec<u32>, u32> = HashMap::with_capacity(3 * tris.len());
             let mut positions = Vec::with_capacity(3 * tris.len());
-            let mut normals = Vec::with_capacity(3 * tris.len());
+            let mut normals = Vec::new();
             let mut uvs = Vec::new();
             let mut colors = Vec::new();
+            let mut indices = Vec::with_capacity(3 * tris.len());
             for &t in &tris {
-                let flat = mesh.triangle_normal(t).as_vec3().normalize_or(Vec3::Y);
                 for (k, p) in mesh.triangle(t).into_iter().enumerate() {
-                    positions.push(p.as_vec3().to_array());
-                    let n = corners
-                        .and_then(|c| c.normal.as_ref())
-                        .map(|n| n[t][k])
-                        .unwrap_or(flat.to_array());
-                    normals.push(n);
-                    if let Some(uv) = corners.and_then(|c| c.uv.as_ref()) {
-                        uvs.push(uv[t][k]);
+                    let p = p.as_vec3().to_array();
+                    let n = normal.map(|n| n[t][k]);
+                    let u = uv.map(|u| u[t][k]);
+                    let c = color.map(|c| c[t][k]);
+                    let mut key = bits(&p);
+                    key.extend(bits(n.as_ref().map_or(&[][..], |n| &n[..])));
+                    key.extend(bits(u.as_ref().map_or(&[][..], |u| &u[..])));
+                    key.extend(bits(c.as_ref().map_or(&[][..], |c| &c[..])));
+                    let next = positions.len() as u32;
+                    let i = *index.entry(key).or_insert(next);
+                    if i == next {
+                        positions.push(p);
+                        normals.extend(n);
+                        uvs.extend(u);
+                        colors.extend(c);
                     }
-                    if let Some(c) = corners.and_then(|c| c.color.as_ref()) {
-                        colors.push(c[t][k]);
-                    }
+                    indices.push(i);
                 }
             }
-            let count = positions.len();
             let mut attributes = json!({
                 "POSITION": self.push_floats(&positions, true, true),
-                "NORMAL": self.push_floats(&normals, true, false),
             });
+            if with_normals {
+                attributes["NORMAL"] = json!(self.push_floats(&normals, true, false));
+            }
             if !uvs.is_empty() {
                 attributes["TEXCOORD_0"] = json!(self.push_floats(&uvs, true, false));
             }
             if !colors.is_empty() {
                 attributes["COLOR_0"] = json!(self.push_floats(&colors, true, false));
             }
-            let indices = self.push_indices(count);
+            let indices = self.push_indices(&indices);
             primitives.push(json!({
                 "attributes": attributes,
                 "indices": indices,
@@ -314,8 +332,8 @@ fn container(mut json: Vec<u8>, mut bin: Vec<u8>) -> Vec<u8> {
 
 /// Writes the objects as a GLB: one node (and mesh) per object, named after it, with the
 /// surface faces under material 0 (`surface`) and the interior faces under material 1
-/// (`interior`). Vertices are split per corner, with flat normals unless the objects
-/// carry their own. Positions are stored as `f32`, the glTF format's.
+/// (`interior`). Vertices are shared where position and attributes agree; NORMAL is
+/// written only for objects that carry normals. Positions are stored as `f32`, the glTF format's.
 ///
 /// ```
 /// use shatter_geom::{io::{self, ExportObject}, shapes};
