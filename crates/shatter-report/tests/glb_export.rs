@@ -119,15 +119,14 @@ fn meshes_keep_their_triangles_and_interior_faces_get_their_own_material() {
     for p in meshes[1].primitives() {
         let reader = p.reader(|b| Some(&buffers[b.index()]));
         let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
-        let normals: Vec<[f32; 3]> = reader.read_normals().unwrap().collect();
         let indices: Vec<u32> = reader.read_indices().unwrap().into_u32().collect();
-        assert_eq!(positions.len(), normals.len());
+        // Flat faces without normals of their own: no NORMAL (a viewer computes flat
+        // normals), and each of the tetrahedron's corners is one vertex.
+        assert!(reader.read_normals().is_none());
+        assert!(positions.len() <= 4);
+        assert!(indices.iter().all(|&i| (i as usize) < positions.len()));
         assert_eq!(indices.len() % 3, 0);
         triangles += indices.len() / 3;
-        for n in normals {
-            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-            assert!((len - 1.0).abs() < 1e-5);
-        }
     }
     assert_eq!(triangles, 4);
 }
