@@ -10,9 +10,8 @@ use shatter_sim::breaking::{
     weight_relief,
 };
 
-use crate::components::{Fragment, ShatterBody, ShatterObject};
+use crate::components::{Fragment, PendingHit, ShatterBody, ShatterObject};
 use crate::convert::{from_bevy, to_bevy};
-use crate::runtime::PendingHit;
 use crate::{BondBroken, ShatterSettings, Split};
 
 pub(crate) type BodyQuery<'w, 's> = Query<

@@ -6,6 +6,8 @@ use bevy::prelude::*;
 use shatter_geom::fracture::Fracture;
 use shatter_sim::breaking::{BondState, Graph};
 
+use crate::Breakable;
+
 /// A fragment of a fractured object: a child of its body entity, with the surface mesh,
 /// the entity's own material and a collider; its interior (cut) faces are a child entity
 /// with the interior material.
@@ -68,4 +70,33 @@ impl ShatterObject {
 pub struct ShatterBody {
     /// The object.
     pub object: Entity,
+}
+
+/// What an object needs to be cut at runtime, kept on its entity (the [`Breakable`] is
+/// removed once it is fractured).
+#[derive(Component, Debug, Clone)]
+pub(crate) struct Cuttable {
+    /// The object's settings; `seed` is the seed of its line of cuts.
+    pub breakable: Breakable,
+    /// The bonds' break force (N), also the threshold `strength · dt`.
+    pub strength: f32,
+    /// The entity's own (surface) material, kept on the new fragments.
+    pub surface: Handle<StandardMaterial>,
+    /// The interior material of cut faces.
+    pub interior: Handle<StandardMaterial>,
+    /// Fragments whose cut failed: not tried again.
+    pub uncuttable: Vec<u32>,
+}
+
+/// The hit that cut an object, still to load the new object's bonds (next step).
+#[derive(Component, Debug, Clone, Copy)]
+pub(crate) struct PendingHit {
+    /// The new fragment nearest the impact.
+    pub fragment: u32,
+    /// Contact force (N, scaled by the plugin's `contact_scale`).
+    pub force: f32,
+    /// Impulse on the cut fragment (N·s, world frame).
+    pub impulse: Vec3,
+    /// The other body's mass (0 when static).
+    pub other_mass: f32,
 }

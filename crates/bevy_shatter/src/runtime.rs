@@ -17,39 +17,10 @@ use shatter_sim::runtime;
 
 use crate::bonds::BodyQuery;
 use crate::breakable::Outcome;
-use crate::components::{Fragment, ShatterObject};
+use crate::components::{Cuttable, Fragment, PendingHit, ShatterObject};
 use crate::convert::{from_bevy, to_bevy};
 use crate::spawn::spawn_fragments;
 use crate::{Breakable, RuntimeFractured, ShatterSettings};
-
-/// What an object needs to be cut at runtime, kept on its entity (the [`Breakable`] is
-/// removed once it is fractured).
-#[derive(Component, Debug, Clone)]
-pub(crate) struct Cuttable {
-    /// The object's settings; `seed` is the seed of its line of cuts.
-    pub breakable: Breakable,
-    /// The bonds' break force (N), also the threshold `strength · dt`.
-    pub strength: f32,
-    /// The entity's own (surface) material, kept on the new fragments.
-    pub surface: Handle<StandardMaterial>,
-    /// The interior material of cut faces.
-    pub interior: Handle<StandardMaterial>,
-    /// Fragments whose cut failed: not tried again.
-    pub uncuttable: Vec<u32>,
-}
-
-/// The hit that cut an object, still to load the new object's bonds (next step).
-#[derive(Component, Debug, Clone, Copy)]
-pub(crate) struct PendingHit {
-    /// The new fragment nearest the impact.
-    pub fragment: u32,
-    /// Contact force (N, scaled by the plugin's `contact_scale`).
-    pub force: f32,
-    /// Impulse on the cut fragment (N·s, world frame).
-    pub impulse: Vec3,
-    /// The other body's mass (0 when static).
-    pub other_mass: f32,
-}
 
 /// A hit that asks for a cut.
 struct Request {

@@ -9,8 +9,7 @@ use shatter_sim::breaking::{BondState, Graph};
 use shatter_sim::runtime::FractureTiming;
 
 use crate::breakable::{FractureTask, Outcome};
-use crate::components::{Fragment, ShatterBody, ShatterObject};
-use crate::runtime::Cuttable;
+use crate::components::{Cuttable, Fragment, ShatterBody, ShatterObject};
 use crate::{Breakable, FractureFailed, Fractured, ShatterSettings, convert};
 use bevy::tasks::{block_on, poll_once};
 
