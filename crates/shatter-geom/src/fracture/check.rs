@@ -226,8 +226,6 @@ impl Fracture {
     }
 }
 
-/// The convex pieces' hulls of fragment `i`: none, or one list per piece whose triangles
-/// name the piece's points.
 /// Fragment `i`'s own invariants: its interior flags, a closed outward surface, its
 /// hulls' indices, and its volume as its mesh encloses it.
 fn check_fragment(i: usize, f: &super::types::Fragment) -> Result<(), InvalidFracture> {
@@ -252,6 +250,8 @@ fn check_fragment(i: usize, f: &super::types::Fragment) -> Result<(), InvalidFra
     Ok(())
 }
 
+/// The convex pieces' hulls of fragment `i`: none, or one list per piece whose triangles
+/// name the piece's points.
 fn check_hulls(i: usize, f: &super::types::Fragment) -> Result<(), InvalidFracture> {
     if f.convex_hulls.is_empty() {
         return Ok(());
