@@ -2,14 +2,14 @@
 //! 2-manifold, outward fragments with positive volumes that add up, and a well-formed
 //! bond graph.
 
-use std::collections::HashMap;
-
 use glam::DVec3;
+use rayon::prelude::*;
 
 use super::normalize::Frame;
 use super::types::Fracture;
 use crate::TriMesh;
 use crate::mesh::is_degenerate;
+use crate::util::FastMap;
 
 /// Relative tolerance of [`Fracture::validate`]'s volume checks.
 pub const VOLUME_TOLERANCE: f64 = 1e-9;
@@ -168,25 +168,18 @@ impl Fracture {
         if self.fragments.is_empty() {
             return Err(InvalidFracture::Empty);
         }
-        for (i, f) in self.fragments.iter().enumerate() {
-            if f.interior.len() != f.mesh.triangles.len() {
-                return Err(InvalidFracture::InteriorFlags {
-                    fragment: i,
-                    flags: f.interior.len(),
-                    triangles: f.mesh.triangles.len(),
-                });
-            }
-            check_surface(i, &f.mesh)?;
-            check_hulls(i, f)?;
-            let mesh = enclosed_volume(&f.mesh);
-            let agrees = (f.volume - mesh).abs() <= VOLUME_TOLERANCE * f.volume.abs();
-            if !(f.volume > 0.0 && f.volume.is_finite() && agrees) {
-                return Err(InvalidFracture::Volume {
-                    fragment: i,
-                    volume: f.volume,
-                    mesh,
-                });
-            }
+        // The fragments are independent, so they are checked in parallel; the error
+        // reported is the first fragment's, as a loop in order would find it.
+        if let Some(err) = self
+            .fragments
+            .par_iter()
+            .enumerate()
+            .with_max_len(1)
+            .map(|(i, f)| check_fragment(i, f).err())
+            .find_first(Option::is_some)
+            .flatten()
+        {
+            return Err(err);
         }
         if let Some(expected) = mesh_volume {
             let total = self.total_volume();
@@ -231,6 +224,30 @@ impl Fracture {
         }
         Ok(())
     }
+}
+
+/// Fragment `i`'s own invariants: its interior flags, a closed outward surface, its
+/// hulls' indices, and its volume as its mesh encloses it.
+fn check_fragment(i: usize, f: &super::types::Fragment) -> Result<(), InvalidFracture> {
+    if f.interior.len() != f.mesh.triangles.len() {
+        return Err(InvalidFracture::InteriorFlags {
+            fragment: i,
+            flags: f.interior.len(),
+            triangles: f.mesh.triangles.len(),
+        });
+    }
+    check_surface(i, &f.mesh)?;
+    check_hulls(i, f)?;
+    let mesh = enclosed_volume(&f.mesh);
+    let agrees = (f.volume - mesh).abs() <= VOLUME_TOLERANCE * f.volume.abs();
+    if !(f.volume > 0.0 && f.volume.is_finite() && agrees) {
+        return Err(InvalidFracture::Volume {
+            fragment: i,
+            volume: f.volume,
+            mesh,
+        });
+    }
+    Ok(())
 }
 
 /// The convex pieces' hulls of fragment `i`: none, or one list per piece whose triangles
@@ -295,8 +312,10 @@ fn check_surface(i: usize, mesh: &TriMesh) -> Result<(), InvalidFracture> {
         first[w as usize] = mesh.positions[v];
     }
     let pos = |w: u32| first[w as usize];
-    let mut corners: HashMap<[u32; 3], usize> = HashMap::with_capacity(welded.len());
-    let mut uses: HashMap<EdgeKey, (usize, usize)> = HashMap::with_capacity(3 * welded.len());
+    let mut corners: FastMap<[u32; 3], usize> = FastMap::default();
+    corners.reserve(welded.len());
+    let mut uses: FastMap<EdgeKey, (usize, usize)> = FastMap::default();
+    uses.reserve(3 * welded.len() / 2);
     for (t, w) in welded.iter().enumerate() {
         let [a, b, c] = mesh.triangles[t].map(|v| mesh.positions[v as usize]);
         if w[0] == w[1] || w[1] == w[2] || w[2] == w[0] || is_degenerate(a, b, c) {

@@ -26,6 +26,7 @@
 //! [`FractureError::OutOfRange`] naming the quantity and its magnitude.
 
 use glam::{DMat3, DVec3};
+use rayon::prelude::*;
 
 use super::params::FractureError;
 use super::types::{Bond, Fracture, Fragment};
@@ -272,10 +273,14 @@ impl Frame {
     /// A fracture of the local frame in the input frame, or the refusal naming the first
     /// quantity beyond `f64`.
     pub(crate) fn fracture_to_world(&self, f: Fracture) -> Result<Fracture, FractureError> {
+        // Per fragment in parallel; the error returned is the first fragment's.
         let fragments = f
             .fragments
-            .into_iter()
+            .into_par_iter()
+            .with_max_len(1)
             .map(|g| self.fragment_to_world(g))
+            .collect::<Vec<_>>()
+            .into_iter()
             .collect::<Result<Vec<_>, _>>()?;
         let bonds = f
             .bonds

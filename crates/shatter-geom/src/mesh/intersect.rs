@@ -277,8 +277,7 @@ impl Grid {
             }
             grid.cell *= 2.0;
         }
-        let mut map: std::collections::HashMap<[i64; 3], Vec<u32>> =
-            std::collections::HashMap::new();
+        let mut map: crate::util::FastMap<[i64; 3], Vec<u32>> = crate::util::FastMap::default();
         for (i, (lo, hi, _)) in boxes.iter().enumerate() {
             let (a, b) = (grid.cell_of(*lo), grid.cell_of(*hi));
             for x in a[0]..=b[0] {

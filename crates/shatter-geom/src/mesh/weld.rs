@@ -1,10 +1,9 @@
 //! Welding: merging vertices at identical positions.
 
-use std::collections::HashMap;
-
 use glam::DVec3;
 
 use super::TriMesh;
+use crate::util::FastMap;
 
 /// Hash key of a position: the bit patterns of its coordinates, with `-0.0` read as `0.0`
 /// so that exactly equal coordinates always share a key.
@@ -28,7 +27,8 @@ impl TriMesh {
     /// assert_eq!(distinct, 8);
     /// ```
     pub fn weld_map(&self) -> (Vec<u32>, usize) {
-        let mut seen: HashMap<[u64; 3], u32> = HashMap::with_capacity(self.positions.len());
+        let mut seen: FastMap<[u64; 3], u32> = FastMap::default();
+        seen.reserve(self.positions.len());
         let mut map = Vec::with_capacity(self.positions.len());
         for &p in &self.positions {
             let next = u32::try_from(seen.len()).expect("mesh exceeds u32 vertices");

@@ -202,7 +202,7 @@ pub(crate) fn loops(edges: &[(u32, u32)]) -> Option<Vec<Vec<u32>>> {
             continue;
         }
         let start = edges[first].0;
-        let mut lp = Vec::new();
+        let mut lp = Vec::with_capacity(edges.len() - first);
         let mut k = first;
         loop {
             if used[k] {

@@ -192,10 +192,16 @@ impl Cutter<'_> {
     /// degenerate cut), for the caller to fall back on triangles.
     fn face_as_polygon(&mut self, face: &Face, along: DVec3) -> bool {
         let sides = if self.both { 2 } else { 1 };
-        let mut kept: [Vec<(u32, u32)>; 2] = [Vec::new(), Vec::new()];
+        // (Sized up front: a side keeps at most every edge and two per crossing.)
+        let room = face.edges.len() + 4;
+        let mut kept: [Vec<(u32, u32)>; 2] = [
+            Vec::with_capacity(room),
+            Vec::with_capacity(if self.both { room } else { 0 }),
+        ];
         // Per side: (position along the line, cut point, whether the side's boundary
         // leaves the face's edges there (true) or comes back to them).
-        let mut crossings: [Vec<(f64, u32, bool)>; 2] = [Vec::new(), Vec::new()];
+        let mut crossings: [Vec<(f64, u32, bool)>; 2] =
+            [Vec::with_capacity(4), Vec::with_capacity(4)];
         for &(a, b) in &face.edges {
             let (sa, sb) = (self.s[a as usize], self.s[b as usize]);
             if sa < 0.0 && sb < 0.0 {
@@ -291,7 +297,10 @@ fn cut(piece: &Piece, plane: &Plane, eps: f64, both: bool, keep_faces: bool) -> 
         on_plane,
         cuts,
         out: [side(), if both { side() } else { Piece::default() }],
-        rims: [Vec::new(), Vec::new()],
+        rims: [
+            Vec::with_capacity(extra),
+            Vec::with_capacity(if both { extra } else { 0 }),
+        ],
         both,
     };
     for (tri, &tag) in piece.tris.iter().zip(&piece.tags) {

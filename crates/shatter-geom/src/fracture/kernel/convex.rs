@@ -23,19 +23,34 @@ pub(crate) const MAX_PIECES: usize = 16;
 /// its pieces' hulls exceed it by a fifth.
 const FINE_MAX_PIECES: usize = 64;
 
+/// The most a concave fragment's own hull may hold, over its volume, to be its one
+/// convex piece (a dent of a few percent is not worth a decomposition: the hull is what
+/// a decomposition's pieces would hold anyway, within its tolerance).
+pub(crate) const ONE_PIECE: f64 = 1.05;
+
 /// Convex pieces of a closed fragment (each with a non-degenerate volume). A fragment
 /// with no edge concave beyond the tolerance is one piece: for a connected, embedded
-/// closed surface, convex edges everywhere mean a convex solid.
+/// closed surface, convex edges everywhere mean a convex solid. A concave fragment whose
+/// hull holds at most [`ONE_PIECE`] of it is one piece too, its hull's corners (as a
+/// fragment cut at runtime takes it, see [`super::inherit`]); any other is decomposed.
 pub(crate) fn convex_pieces(piece: &Piece) -> Vec<Vec<DVec3>> {
     let total = piece.volume();
-    let parts = if total > 0.0 {
-        decomposition_parts(piece)
+    let tol = CONVEX_TOL * super::mesh_scale(piece);
+    let first = if total > 0.0 {
+        worst_face(piece, tol)
     } else {
-        None
+        (tol, None)
     };
-    let Some(parts) = parts else {
+    if first.1.is_none() {
         return vec![piece.pos.clone()];
-    };
+    }
+    if let Some(hull) = Polytope::hull(&piece.pos)
+        && hull.volume() <= ONE_PIECE * total
+    {
+        return vec![hull.to_mesh().0];
+    }
+    let mut parts = Vec::new();
+    decompose_into(piece, first, tol, MAX_PIECES, &mut parts);
     // Pieces under `MIN_PIECE_FRACTION` of the fragment are dropped (their volume is
     // negligible for collision).
     let pieces: Vec<Vec<DVec3>> = parts
@@ -107,6 +122,7 @@ pub(crate) const TET_FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], 
 /// farthest in front of it), again and again, worst part first, until every part is
 /// convex within the tolerance or `MAX_PIECES` is reached. The clipping is exact, so
 /// the parts cover the solid without gaps.
+#[cfg(test)]
 pub(crate) fn decomposition_parts(piece: &Piece) -> Option<Vec<Piece>> {
     decomposition_parts_with(piece, CONVEX_TOL, MAX_PIECES)
 }

@@ -52,6 +52,7 @@ pub(crate) fn hull_mesh(points: &[DVec3]) -> Option<HullMesh> {
         planes: Vec::with_capacity(room),
         alive: Vec::with_capacity(room),
         waiting: Vec::with_capacity(room),
+        spare: Vec::new(),
         tol,
     };
     for face in FACES {
@@ -144,6 +145,9 @@ pub(crate) fn hull_mesh(points: &[DVec3]) -> Option<HullMesh> {
         }
         for &g in &seen {
             orphans.append(&mut h.waiting[g]);
+            // Its list, empty now, keeps its room for a new face (no regrowing).
+            let list = std::mem::take(&mut h.waiting[g]);
+            h.spare.push(list);
             h.alive[g] = false;
         }
         // The fan: face i is (a, b, p) for boundary edge i, between faces i - 1 and i + 1.
@@ -240,6 +244,8 @@ struct Hull<'a> {
     alive: Vec<bool>,
     /// Per face, the points waiting on it (lying in front of it).
     waiting: Vec<Vec<u32>>,
+    /// Empty lists of removed faces, kept with their room for new faces.
+    spare: Vec<Vec<u32>>,
     /// How far in front of a face a point must lie to see it.
     tol: f64,
 }
@@ -258,7 +264,7 @@ impl Hull<'_> {
         self.faces.push(tri);
         self.nbr.push(nbr);
         self.alive.push(true);
-        self.waiting.push(Vec::new());
+        self.waiting.push(self.spare.pop().unwrap_or_default());
     }
 
     /// Each of `points` waits on the face from `first` on it lies farthest in front of,

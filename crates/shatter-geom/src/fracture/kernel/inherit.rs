@@ -15,13 +15,10 @@
 
 use glam::DVec3;
 
-use super::convex::{ConvexPieces, MIN_PIECE_FRACTION};
+use super::convex::{ConvexPieces, MIN_PIECE_FRACTION, ONE_PIECE};
 use super::polytope::{Outcome, Polytope, Scratch};
 use super::{Piece, Plane};
 use crate::util::bounds;
-
-/// The most a fragment's own hull may hold, over its volume, to be its one piece.
-const ONE_PIECE: f64 = 1.05;
 
 /// The most a fragment's inherited pieces may hold, over its own volume. A piece is a hull
 /// of a piece of the solid (convex only within the decomposition's tolerance), so it can

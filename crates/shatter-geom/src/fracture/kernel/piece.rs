@@ -310,7 +310,13 @@ impl Piece {
             let r = uf.find(x);
             if group_of_root[r] == usize::MAX {
                 group_of_root[r] = out.len();
-                out.push(Piece::default());
+                // The first group is most often the only one: room for every triangle.
+                let room = if out.is_empty() { n } else { 0 };
+                out.push(Piece {
+                    tris: Vec::with_capacity(room),
+                    tags: Vec::with_capacity(room),
+                    ..Piece::default()
+                });
             }
             group_of_root[r]
         };

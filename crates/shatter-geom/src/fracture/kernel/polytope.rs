@@ -255,12 +255,15 @@ impl Polytope {
             rim,
             ..
         } = scratch;
-        // Most planes miss: tell that before writing anything.
+        // Most planes miss: tell that before anything else (the distances are kept for
+        // when it cuts).
         let (mut any_in, mut any_out) = (false, false);
+        s.clear();
         for &p in &self.pos {
             let v = plane.eval(p);
             any_in |= v < -tol;
             any_out |= v > tol;
+            s.push(v);
         }
         if !any_out {
             return Outcome::Unchanged;
@@ -268,18 +271,16 @@ impl Polytope {
         if !any_in {
             return Outcome::Empty;
         }
-        s.clear();
         side.clear();
-        for &p in &self.pos {
-            let v = plane.eval(p);
-            let (v, k) = if v.abs() <= tol {
+        for v in s.iter_mut() {
+            let (w, k) = if v.abs() <= tol {
                 (0.0, ON)
-            } else if v < 0.0 {
-                (v, IN)
+            } else if *v < 0.0 {
+                (*v, IN)
             } else {
-                (v, OUT)
+                (*v, OUT)
             };
-            s.push(v);
+            *v = w;
             side.push(k);
         }
         remap.clear();

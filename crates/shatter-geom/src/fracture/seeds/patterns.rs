@@ -71,6 +71,10 @@ pub(crate) fn seeds(
             let unit = extent.max(DVec3::splat(f64::MIN_POSITIVE));
             let spacing = radial_spacing(piece.volume(), extent);
             let mut out: Vec<DVec3> = Vec::with_capacity(k);
+            // The seeds placed so far in the frame of the extents (each axis over its
+            // extent), so the spacing test of a draw against each is a subtraction and
+            // a dot product (most draws near the impact are turned down by it).
+            let mut scaled: Vec<DVec3> = Vec::with_capacity(k);
             for _ in 0..k {
                 let mut placed = None;
                 for _ in 0..RADIAL_TRIES {
@@ -85,15 +89,18 @@ pub(crate) fn seeds(
                     // (Checked before the inside test, which costs more.)
                     let q = (p - centre) / unit;
                     let min = (0.2 * q.length()).max(spacing);
-                    let clear = out
+                    let ps = p / unit;
+                    let clear = scaled
                         .iter()
-                        .all(|&o| ((o - p) / unit).length_squared() >= min * min);
+                        .all(|&o| (o - ps).length_squared() >= min * min);
                     if clear && sampler.contains(p) {
                         placed = Some(p);
                         break;
                     }
                 }
-                out.push(placed.unwrap_or_else(|| sampler.uniform(rng)));
+                let p = placed.unwrap_or_else(|| sampler.uniform(rng));
+                scaled.push(p / unit);
+                out.push(p);
             }
             out
         }
