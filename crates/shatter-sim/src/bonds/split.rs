@@ -32,13 +32,15 @@ pub(crate) fn world_com(rb: &RigidBody) -> Vec3 {
 }
 
 /// Splits `body` into its components; returns the new bodies (the first component keeps
-/// `body`). `impulses` are the impulses the fragments received this step.
+/// `body`). `impulses` are the impulses the fragments received this step; a part freed
+/// from a fixed body is launched by them at most at `max_launch` m/s.
 pub(crate) fn split(
     world: &mut PhysicsWorld,
     live: &mut LiveObject,
     object: u32,
     body: RigidBodyHandle,
     impulses: &BTreeMap<u32, (Vec3, f32)>,
+    max_launch: f32,
 ) -> Vec<RigidBodyHandle> {
     let parts = components(live, body);
     let Some(old) = world.bodies.get(body) else {
@@ -89,7 +91,7 @@ pub(crate) fn split(
             rb.set_linvel(inherited_velocity(v, w, c, ci), true);
             rb.set_angvel(w, true);
         } else {
-            let v0 = launch_velocity(impulses, part, rb.mass());
+            let v0 = launch_velocity(impulses, part, rb.mass()).clamp_length_max(max_launch);
             rb.set_linvel(v0, true);
             rb.set_angvel(Vec3::ZERO, true);
         }

@@ -39,8 +39,13 @@ pub struct WorldSection {
     pub bond_model: Option<Spanned<String>>,
     /// Static ground at y = 0 (default true).
     pub ground: Option<bool>,
-    /// Cap on debris bodies.
-    pub max_debris: Option<usize>,
+    /// Debris bodies kept: an integer ≥ 0, or `"none"` (no cap). Default
+    /// [`crate::world::DEFAULT_MAX_DEBRIS`].
+    pub max_debris: Option<Spanned<toml::Value>>,
+    /// Fastest an explosion throws a body (m/s): a float > 0. Default
+    /// [`crate::world::DEFAULT_MAX_LAUNCH_SPEED`].
+    #[serde(default, deserialize_with = "values::opt_spanned_f32")]
+    pub max_launch_speed: Option<Spanned<f32>>,
     /// Stress-solver iterations per object per step: an integer ≥ 1, or `"none"` (solve
     /// to convergence every step). Default [`crate::world::DEFAULT_STRESS_BUDGET`].
     pub stress_budget: Option<Spanned<toml::Value>>,

@@ -96,7 +96,28 @@ impl Scene {
         if let Some(g) = w.ground {
             settings.ground = g;
         }
-        settings.max_debris = w.max_debris;
+        if let Some(m) = &w.max_debris {
+            settings.max_debris = match m.get_ref() {
+                toml::Value::Integer(n) if *n >= 0 => Some(*n as usize),
+                toml::Value::String(s) if s == "none" => None,
+                other => {
+                    return Err(SimError::invalid(
+                        ctx.key("world.max_debris", m),
+                        format!("must be an integer ≥ 0 or \"none\", got {other}"),
+                    ));
+                }
+            };
+        }
+        if let Some(v) = &w.max_launch_speed {
+            let speed = *v.get_ref();
+            if !(speed.is_finite() && speed > 0.0) {
+                return Err(SimError::invalid(
+                    ctx.key("world.max_launch_speed", v),
+                    format!("must be a positive speed in m/s, got {speed}"),
+                ));
+            }
+            settings.max_launch_speed = speed;
+        }
         for (key, value, setting) in [
             (
                 "world.stress_budget",

@@ -124,6 +124,17 @@ impl World {
             .collect()
     }
 
+    /// The linear speed of the fastest dynamic body (fragments' and projectiles'; m/s),
+    /// 0 without any.
+    pub fn fastest_speed(&self) -> f32 {
+        self.physics
+            .bodies
+            .iter()
+            .filter(|(_, rb)| rb.is_dynamic())
+            .map(|(_, rb)| rb.linvel().length())
+            .fold(0.0, f32::max)
+    }
+
     /// Projectiles in flight.
     pub fn projectiles(&self) -> Vec<ProjectileView<'_>> {
         self.projectiles

@@ -265,6 +265,7 @@ impl World {
                 object,
                 bodies,
                 &loads.impulses,
+                self.settings.max_launch_speed,
             );
             for parts in splits {
                 self.events.push(SimEvent::Split { object, parts });
@@ -333,7 +334,9 @@ impl World {
 
     /// Sets off an explosion now: cluster bonds in the radius are loaded (and may break),
     /// then every dynamic body whose centre of mass is in the radius gets an impulse
-    /// `power·(1 − d/radius)` pointing away from the centre.
+    /// `power·(1 − d/radius)` pointing away from the centre, less where it would make
+    /// the body faster than [`WorldSettings::max_launch_speed`](crate::WorldSettings)
+    /// (then it leaves at that speed, in the direction the full impulse gave it).
     pub fn explode(&mut self, spec: ExplosionSpec) {
         let mut loads: BTreeMap<u32, Loads> = BTreeMap::new();
         for (id, record) in &self.objects {
@@ -370,9 +373,14 @@ impl World {
                 pushes.push((h, dir * spec.power * (1.0 - x / spec.radius)));
             }
         }
+        let limit = self.settings.max_launch_speed;
         for (h, impulse) in pushes {
             if let Some(rb) = self.physics.bodies.get_mut(h) {
+                let most = limit.max(rb.linvel().length());
                 rb.apply_impulse(impulse, true);
+                if rb.linvel().length() > most {
+                    rb.set_linvel(rb.linvel().clamp_length_max(most), true);
+                }
             }
         }
         self.update_counts();
@@ -381,7 +389,8 @@ impl World {
 
 /// Splits each of `bodies` into its components and lists the new single-fragment dynamic
 /// bodies as debris. Returns, per body that split, the fragments of each of its parts
-/// (the part that kept the old body first).
+/// (the part that kept the old body first). Parts freed from a fixed body are launched at
+/// most at `max_launch` m/s.
 pub(crate) fn split_bodies(
     physics: &mut PhysicsWorld,
     debris: &mut std::collections::VecDeque<(u32, RigidBodyHandle)>,
@@ -389,10 +398,11 @@ pub(crate) fn split_bodies(
     object: u32,
     bodies: Vec<RigidBodyHandle>,
     impulses: &BTreeMap<u32, (Vec3, f32)>,
+    max_launch: f32,
 ) -> Vec<Vec<Vec<u32>>> {
     let mut splits = Vec::new();
     for body in bodies {
-        let new = split::split(physics, live, object, body, impulses);
+        let new = split::split(physics, live, object, body, impulses, max_launch);
         if new.is_empty() {
             continue;
         }
