@@ -276,6 +276,16 @@ fn the_debris_cap_and_the_launch_limit_are_read_and_saved() {
     assert_eq!(settings("[world]\nmax_debris = 300\n").0, Some(300));
     assert_eq!(settings("[world]\nmax_debris = \"none\"\n").0, None);
     assert_eq!(settings("[world]\nmax_launch_speed = 40\n").1, 40.0);
+    let boxes = |text: &str| Scene::parse(text).unwrap().settings.box_colliders;
+    assert!(!boxes(""));
+    assert!(boxes("[world]\nbox_colliders = true\n"));
+    let e = err("[world]\nbox_colliders = 1\n");
+    assert!(e.contains("box_colliders"), "{e}");
+    let world = Scene::parse("[world]\nbox_colliders = true\n")
+        .unwrap()
+        .build(None)
+        .unwrap();
+    assert!(boxes(&world.to_scene_toml().unwrap()));
     for text in [
         "[world]\nmax_debris = 300\nmax_launch_speed = 40.5\n",
         "[world]\nmax_debris = \"none\"\n",

@@ -116,6 +116,8 @@ pub(crate) struct Surface {
     pub density: f32,
     pub friction: f32,
     pub restitution: f32,
+    /// A box-shaped piece collides as a cuboid ([`crate::WorldSettings::box_colliders`]).
+    pub boxes: bool,
 }
 
 impl LiveObject {
@@ -152,15 +154,21 @@ impl LiveObject {
         force_events: Option<f32>,
     ) -> usize {
         let mut made = Vec::new();
-        let exact = self.exact_mass(f, surface.density);
-        for shape in &self.prepared.shapes[f as usize] {
-            let builder = ColliderBuilder::new(shape.clone());
-            // The fragment's exact mass properties sit on its first collider; the others
+        for piece in &self.prepared.shapes[f as usize] {
+            let (builder, offset) = match piece.cuboid.filter(|_| surface.boxes) {
+                Some((centre, half)) => (
+                    ColliderBuilder::cuboid(half.x, half.y, half.z).translation(centre),
+                    centre,
+                ),
+                None => (ColliderBuilder::new(piece.hull.clone()), Vec3::ZERO),
+            };
+            // The fragment's exact mass properties sit on its first collider (in that
+            // collider's frame: the object's, moved by a cuboid's offset); the others
             // only collide. (The hulls' own would be up to a few per cent off where a
             // piece is convex only within the decomposition's tolerance, and a runtime
             // cut or a split would then change the momentum.)
             let mprops = if made.is_empty() {
-                exact
+                self.exact_mass(f, surface.density, offset)
             } else {
                 MassProperties::default()
             };
@@ -184,13 +192,15 @@ impl LiveObject {
         count
     }
 
-    /// Fragment `f`'s mass properties at `density` in the object's frame: mass, centroid
-    /// and inertia from its exact volume and inertia tensor.
-    fn exact_mass(&self, f: u32, density: f32) -> MassProperties {
+    /// Fragment `f`'s mass properties at `density` in the object's frame moved by
+    /// `offset` (a collider's frame): mass, centroid and inertia from its exact volume
+    /// and inertia tensor.
+    fn exact_mass(&self, f: u32, density: f32, offset: Vec3) -> MassProperties {
         let fragment = &self.prepared.fracture.fragments[f as usize];
         let mass = self.prepared.masses[f as usize];
         let i = fragment.inertia * f64::from(density);
-        MassProperties::with_inertia_matrix(fragment.centroid.as_vec3(), mass, i.as_mat3())
+        let centroid = fragment.centroid - offset.as_dvec3();
+        MassProperties::with_inertia_matrix(centroid.as_vec3(), mass, i.as_mat3())
     }
 
     /// Marks bond `b` broken by an impact (idempotent).

@@ -4,6 +4,6 @@ pub mod prepare;
 pub mod projectile;
 pub mod spec;
 
-pub use prepare::Prepared;
+pub use prepare::{PieceShape, Prepared};
 pub use projectile::{ProjectileShape, ProjectileSpec};
 pub use spec::{BondModel, ExplosionSpec, FractureParams, FractureSource, ObjectSpec};

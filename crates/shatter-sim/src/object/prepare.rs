@@ -21,10 +21,10 @@ use crate::runtime::FractureTiming;
 pub struct Prepared {
     /// The scaled fracture (meshes for the renderer, bonds for the sim).
     pub fracture: Arc<Fracture>,
-    /// Per fragment, the collision shapes of its convex pieces (their hulls, built once:
-    /// a body built again, or a fragment attached to another body, shares them). A piece
-    /// whose points span no volume has none.
-    pub shapes: Vec<Vec<SharedShape>>,
+    /// Per fragment, the collision shapes of its convex pieces (their hulls, and the box
+    /// of a piece that is one; built once: a body built again, or a fragment attached to
+    /// another body, shares them). A piece whose points span no volume has none.
+    pub shapes: Vec<Vec<PieceShape>>,
     /// Per fragment, its mass (volume × density).
     pub masses: Vec<f32>,
     /// Per fragment, whether it is bonded to the world (anchored objects only).
@@ -184,11 +184,23 @@ pub fn prepare(fracture: &Fracture, scale: Vec3, density: f32, anchored: bool) -
     prepare_with(fracture, scale, density, anchored, None)
 }
 
+/// One convex piece's collision shapes, in the object's frame.
+#[derive(Debug, Clone)]
+pub struct PieceShape {
+    /// The piece's hull.
+    pub hull: SharedShape,
+    /// Where the piece is an axis-aligned box (a grid's brick): its centre and half
+    /// extents, for a cuboid collider ([`WorldSettings::box_colliders`]).
+    ///
+    /// [`WorldSettings::box_colliders`]: crate::WorldSettings::box_colliders
+    pub cuboid: Option<(Vec3, Vec3)>,
+}
+
 /// The collision shapes of `fracture`'s fragments at scale `scale` (see
 /// [`Prepared::shapes`]): the hull of each convex piece, built from the hull's triangles
 /// where the fragment has them ([`Fragment::convex_hulls`]: a closed surface over the
-/// piece's points), else computed from the points.
-pub fn collision_shapes(fracture: &Fracture, scale: Vec3) -> Vec<Vec<SharedShape>> {
+/// piece's points), else computed from the points; and the box of a piece that is one.
+pub fn collision_shapes(fracture: &Fracture, scale: Vec3) -> Vec<Vec<PieceShape>> {
     let s = scale.as_dvec3();
     fracture
         .fragments
@@ -200,15 +212,59 @@ pub fn collision_shapes(fracture: &Fracture, scale: Vec3) -> Vec<Vec<SharedShape
                 .filter_map(|(k, p)| {
                     let points = || p.iter().map(|v| (*v * s).as_vec3()).collect::<Vec<Vec3>>();
                     let hull = f.convex_hulls.get(k).map(Vec::as_slice);
-                    match hull.filter(|tris| closed_over(tris, p.len())) {
+                    let hull = match hull.filter(|tris| closed_over(tris, p.len())) {
                         Some(tris) => SharedShape::convex_mesh(points(), tris)
                             .or_else(|| SharedShape::convex_hull(&points())),
                         None => SharedShape::convex_hull(&points()),
-                    }
+                    }?;
+                    Some(PieceShape {
+                        hull,
+                        cuboid: axis_aligned_box(p, s),
+                    })
                 })
                 .collect()
         })
         .collect()
+}
+
+/// Relative tolerance of [`axis_aligned_box`]: a point may be this far (times the box's
+/// largest edge) from the box's corner, about the rounding of a scaled brick's corners.
+/// Only which collision shape a piece can get depends on it.
+const BOX_TOLERANCE: f64 = 1e-6;
+
+/// The centre and half extents (scaled by `scale`) of `points` when they are the eight
+/// corners of an axis-aligned box with edges of positive length, else `None`.
+fn axis_aligned_box(points: &[DVec3], scale: DVec3) -> Option<(Vec3, Vec3)> {
+    if points.len() != 8 {
+        return None;
+    }
+    let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+    for p in points {
+        lo = lo.min(*p * scale);
+        hi = hi.max(*p * scale);
+    }
+    let edge = hi - lo;
+    if !(edge.min_element() > 0.0 && edge.max_element().is_finite()) {
+        return None;
+    }
+    let tol = BOX_TOLERANCE * edge.max_element();
+    let mut seen = 0u8;
+    for p in points {
+        let p = *p * scale;
+        let mut corner = 0u8;
+        for axis in 0..3 {
+            if (p[axis] - hi[axis]).abs() <= tol {
+                corner |= 1 << axis;
+            } else if (p[axis] - lo[axis]).abs() > tol {
+                return None;
+            }
+        }
+        if seen & (1 << corner) != 0 {
+            return None;
+        }
+        seen |= 1 << corner;
+    }
+    Some((((lo + hi) / 2.0).as_vec3(), (edge / 2.0).as_vec3()))
 }
 
 /// Whether `tris` is a closed surface over `n` points (at least four triangles, every
@@ -253,7 +309,7 @@ pub(crate) fn prepare_with(
     scale: Vec3,
     density: f32,
     anchored: bool,
-    shapes: Option<Vec<Vec<SharedShape>>>,
+    shapes: Option<Vec<Vec<PieceShape>>>,
 ) -> Prepared {
     let s = scale.as_dvec3();
     let shapes = shapes
@@ -413,7 +469,8 @@ mod tests {
         let shapes = collision_shapes(&cut, Vec3::ONE);
         for (f, s) in cut.fragments.iter().zip(&shapes) {
             assert_eq!(s.len(), f.convex_pieces.len());
-            for (shape, points) in s.iter().zip(&f.convex_pieces) {
+            for (piece, points) in s.iter().zip(&f.convex_pieces) {
+                let shape = &piece.hull;
                 assert_eq!(shape.shape_type(), ShapeType::ConvexPolyhedron);
                 let poly = shape.as_convex_polyhedron().unwrap();
                 // From the hull's triangles: every point of the piece is a corner.

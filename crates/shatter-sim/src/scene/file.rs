@@ -39,6 +39,8 @@ pub struct WorldSection {
     pub bond_model: Option<Spanned<String>>,
     /// Static ground at y = 0 (default true).
     pub ground: Option<bool>,
+    /// Box-shaped pieces collide as cuboids (default false).
+    pub box_colliders: Option<bool>,
     /// Debris bodies kept: an integer ≥ 0, or `"none"` (no cap). Default
     /// [`crate::world::DEFAULT_MAX_DEBRIS`].
     pub max_debris: Option<Spanned<toml::Value>>,

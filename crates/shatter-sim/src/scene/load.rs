@@ -57,8 +57,9 @@ impl Scene {
         let file: SceneFile = toml::from_str(text).map_err(|e| {
             let (line, column) = e.span().map_or((0, 0), |s| line_col(text, s.start));
             let mut message = e.message().trim().to_string();
-            // Type errors point at the value: name the key written before it.
-            if !message.contains('`')
+            // Type errors point at the value: name the key written before it (an unknown or
+            // missing field's message names it already).
+            if !message.contains("field `")
                 && let Some(key) = text
                     .lines()
                     .nth(line.saturating_sub(1))
@@ -95,6 +96,9 @@ impl Scene {
         }
         if let Some(g) = w.ground {
             settings.ground = g;
+        }
+        if let Some(b) = w.box_colliders {
+            settings.box_colliders = b;
         }
         if let Some(m) = &w.max_debris {
             settings.max_debris = match m.get_ref() {

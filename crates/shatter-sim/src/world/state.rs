@@ -278,6 +278,7 @@ impl World {
             density: spec.material.density,
             friction: spec.material.friction,
             restitution: spec.material.restitution,
+            boxes: self.settings.box_colliders,
         };
         match model {
             BondModel::Joints => {

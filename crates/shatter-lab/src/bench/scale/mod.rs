@@ -42,6 +42,9 @@ pub struct BenchScaleOptions {
     pub seconds: f64,
     /// Folder for the plots (created if missing).
     pub out: PathBuf,
+    /// Bricks collide as cuboids instead of their hulls
+    /// ([`WorldSettings::box_colliders`](shatter_sim::WorldSettings::box_colliders)).
+    pub box_colliders: bool,
 }
 
 /// The largest world one run may ask for (the estimate refuses what the machine cannot
@@ -110,6 +113,8 @@ pub struct BenchScaleReport {
     pub seconds: f64,
     /// Steps per run.
     pub steps: u64,
+    /// Whether the bricks collided as cuboids (`--box-colliders`), not as their hulls.
+    pub box_colliders: bool,
     /// The estimate checked before the runs (s).
     pub estimated_seconds: f64,
     /// Wall-clock seconds of all runs (building included).
@@ -128,6 +133,7 @@ struct ScaleConfig {
     cases: Vec<ScaleCase>,
     seconds: f64,
     steps: u64,
+    box_colliders: bool,
 }
 
 impl ScaleConfig {
@@ -172,6 +178,7 @@ impl ScaleConfig {
             cases,
             seconds: o.seconds,
             steps: steps_of(o.seconds),
+            box_colliders: o.box_colliders,
         })
     }
 
@@ -272,7 +279,7 @@ fn measure(
 ) -> Result<ScaleRow, LabError> {
     ctx.progress.check()?;
     let t0 = Instant::now();
-    let (mut world, id) = worlds::build(case, n, model, config.seconds)?;
+    let (mut world, id) = worlds::build(case, n, model, config.seconds, config.box_colliders)?;
     let build_ms = t0.elapsed().as_secs_f64() * 1e3;
     world.start();
     let steps = config.steps;
@@ -365,6 +372,7 @@ pub fn run(
     Ok(BenchScaleReport {
         seconds: config.seconds,
         steps: config.steps,
+        box_colliders: config.box_colliders,
         estimated_seconds: estimate.seconds,
         measured_seconds,
         rows,

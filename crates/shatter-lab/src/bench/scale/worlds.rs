@@ -99,16 +99,19 @@ pub fn bricks(grid: [u32; 3]) -> usize {
 }
 
 /// A world of `case` with about `n` bricks bonded by `model`, and the object's id;
-/// `seconds` is the length of the run (the shots are scheduled up to it).
+/// `seconds` is the length of the run (the shots are scheduled up to it); the bricks
+/// collide as cuboids with `box_colliders`.
 pub fn build(
     case: ScaleCase,
     n: usize,
     model: BondModel,
     seconds: f64,
+    box_colliders: bool,
 ) -> Result<(World, ObjectId), LabError> {
     let grid = grid_for(case, n);
     let mut world = World::new(WorldSettings {
         bond_model: model,
+        box_colliders,
         ..WorldSettings::default()
     });
     let cells = Vec3::new(grid[0] as f32, grid[1] as f32, grid[2] as f32);
@@ -209,7 +212,7 @@ mod tests {
 
     #[test]
     fn a_world_holds_the_grid_s_bricks_and_its_shots() {
-        let (world, _) = build(ScaleCase::Shots, 200, BondModel::Clusters, 1.0).unwrap();
+        let (world, _) = build(ScaleCase::Shots, 200, BondModel::Clusters, 1.0, false).unwrap();
         assert_eq!(
             world.stats().fragments,
             bricks(grid_for(ScaleCase::Shots, 200))
