@@ -286,6 +286,11 @@ fn the_debris_cap_and_the_launch_limit_are_read_and_saved() {
         .build(None)
         .unwrap();
     assert!(boxes(&world.to_scene_toml().unwrap()));
+    let skip = |text: &str| Scene::parse(text).unwrap().settings.skip_held_contacts;
+    assert!(!skip(""));
+    assert!(skip("[world]\nskip_held_contacts = true\n"));
+    let e = err("[world]\nskip_held_contacts = \"yes\"\n");
+    assert!(e.contains("skip_held_contacts"), "{e}");
     for text in [
         "[world]\nmax_debris = 300\nmax_launch_speed = 40.5\n",
         "[world]\nmax_debris = \"none\"\n",

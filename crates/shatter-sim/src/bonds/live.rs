@@ -29,6 +29,8 @@ pub(crate) struct LiveObject {
     pub anchor_joints: Vec<(u32, ImpulseJointHandle)>,
     /// Stress solver state (clusters objects with anchored fragments).
     pub stress: Option<Box<StressState>>,
+    /// Which fragments the joints hold, whose contacts are skipped (joints model).
+    pub held: crate::bonds::held::Held,
 }
 
 /// The stress solver of an anchored cluster object.
@@ -118,6 +120,9 @@ pub(crate) struct Surface {
     pub restitution: f32,
     /// A box-shaped piece collides as a cuboid ([`crate::WorldSettings::box_colliders`]).
     pub boxes: bool,
+    /// Contacts between fragments the joints hold are skipped
+    /// ([`crate::bonds::held`]; joints model).
+    pub skip_held: bool,
 }
 
 impl LiveObject {
@@ -134,6 +139,10 @@ impl LiveObject {
             joints: vec![None; m],
             anchor_joints: Vec::new(),
             stress: None,
+            held: crate::bonds::held::Held {
+                version: u64::MAX,
+                near: Vec::new(),
+            },
         }
     }
 
@@ -173,6 +182,11 @@ impl LiveObject {
                 MassProperties::default()
             };
             let mut builder = builder
+                .active_hooks(if surface.skip_held {
+                    ActiveHooks::FILTER_CONTACT_PAIRS
+                } else {
+                    ActiveHooks::empty()
+                })
                 .mass_properties(mprops)
                 .friction(surface.friction)
                 .restitution(surface.restitution)

@@ -124,6 +124,16 @@ impl World {
             .collect()
     }
 
+    /// Pairs of colliders in contact after the last step (Rapier's narrow phase, pairs
+    /// with at least one active contact).
+    pub fn touching_pairs(&self) -> usize {
+        self.physics
+            .narrow_phase
+            .contact_pairs()
+            .filter(|p| p.has_any_active_contact())
+            .count()
+    }
+
     /// The linear speed of the fastest dynamic body (fragments' and projectiles'; m/s),
     /// 0 without any.
     pub fn fastest_speed(&self) -> f32 {

@@ -9,6 +9,7 @@ use glam::{Quat, Vec3};
 use rapier3d::prelude::*;
 
 use crate::bonds::clusters::{self, Loads};
+use crate::bonds::held::{self, HeldContacts};
 use crate::bonds::live::LiveObject;
 use crate::bonds::tags::{Kind, tag, untag};
 use crate::bonds::{joints, split};
@@ -127,7 +128,20 @@ impl World {
             }
         }
         let hits = HitCollector::default();
-        self.physics.step_with_events(&(), &hits);
+        for record in self.objects.values_mut() {
+            if let Some(live) = record.live.as_mut() {
+                held::update(live);
+            }
+        }
+        let filter = HeldContacts {
+            objects: self
+                .objects
+                .iter()
+                .filter_map(|(id, r)| r.live.as_ref().map(|live| (id.0, live)))
+                .filter(|(_, live)| live.model == BondModel::Joints)
+                .collect(),
+        };
+        self.physics.step_with_events(&filter, &hits);
         self.stats.steps += 1;
         self.stats.time = self.stats.steps as f64 * self.settings.dt as f64;
         let hits = hits.0.into_inner().unwrap_or_default();

@@ -13,6 +13,7 @@ fn options(dir: &std::path::Path) -> BenchScaleOptions {
         seconds: 0.1,
         out: dir.to_path_buf(),
         box_colliders: false,
+        skip_held_contacts: false,
     }
 }
 
