@@ -49,6 +49,6 @@ pub use rapier3d::math::Pose;
 pub use shatter_geom::shapes::Shape;
 pub use world::{
     BreakCause, DEFAULT_MAX_DEBRIS, DEFAULT_MAX_LAUNCH_SPEED, DEFAULT_STRESS_BUDGET,
-    DEFAULT_STRESS_BUILD_BUDGET, DEFAULT_STRESS_SPRING_BUDGET, ObjectId, ProjectileView, RunState,
-    SimEvent, Stats, World, WorldSettings,
+    DEFAULT_STRESS_BUILD_BUDGET, DEFAULT_STRESS_SPRING_BUDGET, DEFAULT_TINY_DEBRIS, ObjectId,
+    ProjectileView, RunState, SimEvent, Stats, World, WorldSettings,
 };

@@ -1,5 +1,6 @@
-//! `skip_held_contacts`: joints-model fragments held within three bonds of each other do
-//! not collide; once their bonds break, they do.
+//! Contacts left out: joints-model fragments held within three bonds of each other
+//! (`skip_held_contacts`; once their bonds break, they collide), and tiny debris with
+//! tiny debris (`tiny_debris`).
 #![allow(clippy::unwrap_used, missing_docs)]
 
 mod common;
@@ -45,4 +46,33 @@ fn fragments_held_by_joints_touch_only_when_their_bonds_break() {
     assert_eq!(touching(true, false), 0, "held bricks touch");
     // The loose corner brick rests on its neighbours and touches them again.
     assert!(touching(true, true) > 0, "a loose brick touches nothing");
+}
+
+#[test]
+fn tiny_debris_touches_the_ground_but_not_other_tiny_debris() {
+    use glam::Vec3;
+    use shatter_sim::testing::box_grid_fracture;
+    use shatter_sim::{ObjectSpec, World, WorldSettings};
+    // 18 bricks of 3 cm (6 cm across) in two layers, with bonds that break at once.
+    let touching = |tiny_debris: f32| {
+        let mut world = World::new(WorldSettings {
+            bond_model: BondModel::Clusters,
+            tiny_debris,
+            ..WorldSettings::default()
+        });
+        let mut spec = ObjectSpec::from_fracture(
+            box_grid_fracture([3, 2, 3], [0.09, 0.06, 0.09].into()),
+            Vec3::new(0.0, 0.03, 0.0),
+        );
+        spec.break_force = Some(0.001);
+        world.add_object(spec).unwrap();
+        run(&mut world, 120);
+        assert_eq!(world.stats().bodies, 18, "not all loose");
+        world.touching_pairs()
+    };
+    // Every brick on the ground and nothing else: the upper layer fell through the lower.
+    assert_eq!(touching(0.1), 18, "tiny debris pairs touch");
+    // With the rule off, the upper layer rests on the lower one.
+    let pairs = touching(0.0);
+    assert!(pairs > 18, "{pairs}");
 }

@@ -56,6 +56,13 @@ fn invalid_values_name_the_key() {
             "{bad}: {e}"
         );
     }
+    for bad in ["-0.1", "nan", "inf", "\"small\""] {
+        let e = err(&format!("[world]\ntiny_debris = {bad}\n"));
+        assert!(
+            e.contains("tiny_debris") && e.contains("line 2"),
+            "{bad}: {e}"
+        );
+    }
     for bad in ["0", "-5", "nan", "inf"] {
         let e = err(&format!("[world]\nmax_launch_speed = {bad}\n"));
         assert!(
@@ -286,6 +293,14 @@ fn the_debris_cap_and_the_launch_limit_are_read_and_saved() {
         .build(None)
         .unwrap();
     assert!(boxes(&world.to_scene_toml().unwrap()));
+    let tiny = |text: &str| Scene::parse(text).unwrap().settings.tiny_debris;
+    assert_eq!(tiny(""), shatter_sim::DEFAULT_TINY_DEBRIS);
+    assert_eq!(tiny("[world]\ntiny_debris = 0\n"), 0.0);
+    let world = Scene::parse("[world]\ntiny_debris = 0.125\n")
+        .unwrap()
+        .build(None)
+        .unwrap();
+    assert_eq!(tiny(&world.to_scene_toml().unwrap()), 0.125);
     let skip = |text: &str| Scene::parse(text).unwrap().settings.skip_held_contacts;
     assert!(!skip(""));
     assert!(skip("[world]\nskip_held_contacts = true\n"));

@@ -27,6 +27,8 @@ pub struct Prepared {
     pub shapes: Vec<Vec<PieceShape>>,
     /// Per fragment, its mass (volume × density).
     pub masses: Vec<f32>,
+    /// Per fragment, the diagonal of its mesh's bounding box (m).
+    pub sizes: Vec<f32>,
     /// Per fragment, whether it is bonded to the world (anchored objects only).
     pub anchored: Vec<bool>,
     /// Per fragment, the indices of its bonds.
@@ -335,6 +337,14 @@ pub(crate) fn prepare_with(
         }
     }
     let anchored = anchored_fragments(&fragments, anchored);
+    let sizes = fragments
+        .iter()
+        .map(|f| {
+            f.mesh
+                .bounds()
+                .map_or(0.0, |(lo, hi)| (hi - lo).length() as f32)
+        })
+        .collect();
     Prepared {
         fracture: Arc::new(Fracture {
             fragments,
@@ -344,6 +354,7 @@ pub(crate) fn prepare_with(
         }),
         shapes,
         masses,
+        sizes,
         anchored,
         adjacency,
     }

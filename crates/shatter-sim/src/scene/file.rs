@@ -50,6 +50,10 @@ pub struct WorldSection {
     /// [`crate::world::DEFAULT_MAX_LAUNCH_SPEED`].
     #[serde(default, deserialize_with = "values::opt_spanned_f32")]
     pub max_launch_speed: Option<Spanned<f32>>,
+    /// Debris under this size (m) does not collide with such debris: a float ≥ 0.
+    /// Default [`crate::world::DEFAULT_TINY_DEBRIS`].
+    #[serde(default, deserialize_with = "values::opt_spanned_f32")]
+    pub tiny_debris: Option<Spanned<f32>>,
     /// Stress-solver iterations per object per step: an integer ≥ 1, or `"none"` (solve
     /// to convergence every step). Default [`crate::world::DEFAULT_STRESS_BUDGET`].
     pub stress_budget: Option<Spanned<toml::Value>>,

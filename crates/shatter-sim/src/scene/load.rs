@@ -125,6 +125,16 @@ impl Scene {
             }
             settings.max_launch_speed = speed;
         }
+        if let Some(v) = &w.tiny_debris {
+            let size = *v.get_ref();
+            if !(size.is_finite() && size >= 0.0) {
+                return Err(SimError::invalid(
+                    ctx.key("world.tiny_debris", v),
+                    format!("must be a size ≥ 0 in metres, got {size}"),
+                ));
+            }
+            settings.tiny_debris = size;
+        }
         for (key, value, setting) in [
             (
                 "world.stress_budget",

@@ -31,6 +31,7 @@ impl World {
                 skip_held_contacts: Some(s.skip_held_contacts),
                 max_debris: Some(sp(budget_value(s.max_debris))),
                 max_launch_speed: Some(sp(s.max_launch_speed)),
+                tiny_debris: Some(sp(s.tiny_debris)),
                 stress_budget: Some(sp(budget_value(s.stress_budget))),
                 stress_spring_budget: Some(sp(budget_value(s.stress_spring_budget))),
                 stress_build_budget: Some(sp(budget_value(s.stress_build_budget))),

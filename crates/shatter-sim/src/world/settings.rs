@@ -38,6 +38,10 @@ pub const DEFAULT_MAX_LAUNCH_SPEED: f32 = 500.0;
 /// benchmarks or the shipped scenes make; it bounds what an unbounded run piles up.
 pub const DEFAULT_MAX_DEBRIS: usize = 10_000;
 
+/// [`WorldSettings::tiny_debris`] by default (m): loose pieces smaller than 5 cm across
+/// (slivers, chips) do not collide with each other.
+pub const DEFAULT_TINY_DEBRIS: f32 = 0.05;
+
 /// Global settings of a simulation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WorldSettings {
@@ -64,6 +68,12 @@ pub struct WorldSettings {
     /// gets this speed in the same direction (one already faster is not slowed). Keeps
     /// a strong explosion next to a small fragment from throwing it past `max_speed`.
     pub max_launch_speed: f32,
+    /// Debris (a single loose fragment) whose bounding box's diagonal is under this size
+    /// (m) does not collide with other such debris, only with everything else: chips
+    /// and slivers fall through each other onto the ground and the larger pieces
+    /// instead of piling up in contacts. 0: every piece collides with every piece.
+    /// Default [`DEFAULT_TINY_DEBRIS`].
+    pub tiny_debris: f32,
     /// A convex piece that is an axis-aligned box in its object's frame (a grid's brick)
     /// collides as Rapier's cuboid instead of its hull: box-box contacts, bounds and
     /// sweeps cost a fraction of a convex polyhedron's (bench scale's landing block of
@@ -115,6 +125,7 @@ impl Default for WorldSettings {
             max_debris: Some(DEFAULT_MAX_DEBRIS),
             max_speed: 1000.0,
             max_launch_speed: DEFAULT_MAX_LAUNCH_SPEED,
+            tiny_debris: DEFAULT_TINY_DEBRIS,
             box_colliders: false,
             skip_held_contacts: false,
             solver_iterations: 4,

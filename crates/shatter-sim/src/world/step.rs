@@ -14,6 +14,7 @@ use crate::bonds::live::LiveObject;
 use crate::bonds::tags::{Kind, tag, untag};
 use crate::bonds::{joints, split};
 use crate::object::{BondModel, ExplosionSpec, ProjectileShape, ProjectileSpec};
+use crate::world::settings::WorldSettings;
 use crate::world::settings::{BreakCause, SimEvent};
 use crate::world::state::{Action, ObjectId, Projectile, RunState, World};
 
@@ -178,6 +179,7 @@ impl World {
                     && !live.anchor_joints.iter().any(|(a, _)| *a as usize == f);
                 if loose && !self.debris.contains(&(id.0, h)) {
                     self.debris.push_back((id.0, h));
+                    tiny_debris(&mut self.physics, live, f as u32, self.settings.tiny_debris);
                 }
             }
         }
@@ -279,7 +281,7 @@ impl World {
                 object,
                 bodies,
                 &loads.impulses,
-                self.settings.max_launch_speed,
+                &self.settings,
             );
             for parts in splits {
                 self.events.push(SimEvent::Split { object, parts });
@@ -404,7 +406,8 @@ impl World {
 /// Splits each of `bodies` into its components and lists the new single-fragment dynamic
 /// bodies as debris. Returns, per body that split, the fragments of each of its parts
 /// (the part that kept the old body first). Parts freed from a fixed body are launched at
-/// most at `max_launch` m/s.
+/// most at `settings.max_launch_speed`; tiny debris is put in its collision group
+/// ([`tiny_debris`]).
 pub(crate) fn split_bodies(
     physics: &mut PhysicsWorld,
     debris: &mut std::collections::VecDeque<(u32, RigidBodyHandle)>,
@@ -412,11 +415,18 @@ pub(crate) fn split_bodies(
     object: u32,
     bodies: Vec<RigidBodyHandle>,
     impulses: &BTreeMap<u32, (Vec3, f32)>,
-    max_launch: f32,
+    settings: &WorldSettings,
 ) -> Vec<Vec<Vec<u32>>> {
     let mut splits = Vec::new();
     for body in bodies {
-        let new = split::split(physics, live, object, body, impulses, max_launch);
+        let new = split::split(
+            physics,
+            live,
+            object,
+            body,
+            impulses,
+            settings.max_launch_speed,
+        );
         if new.is_empty() {
             continue;
         }
@@ -428,10 +438,37 @@ pub(crate) fn split_bodies(
             let dynamic = physics.bodies.get(h).is_some_and(|rb| rb.is_dynamic());
             if fragments.len() == 1 && dynamic && !debris.contains(&(object, h)) {
                 debris.push_back((object, h));
+                tiny_debris(physics, live, fragments[0], settings.tiny_debris);
             }
             parts.push(fragments);
         }
         splits.push(parts);
     }
     splits
+}
+
+/// Collision group of tiny debris ([`WorldSettings::tiny_debris`]): its members do not
+/// collide with each other, only with everything else (whose groups are the default, all
+/// memberships and all filters).
+pub(crate) const TINY_DEBRIS_GROUPS: InteractionGroups = InteractionGroups::new(
+    Group::GROUP_32,
+    Group::ALL.difference(Group::GROUP_32),
+    InteractionTestMode::And,
+);
+
+/// Puts fragment `f`'s colliders in the tiny-debris group when its size is under `size`.
+pub(crate) fn tiny_debris(physics: &mut PhysicsWorld, live: &LiveObject, f: u32, size: f32) {
+    if live
+        .prepared
+        .sizes
+        .get(f as usize)
+        .is_none_or(|&s| s >= size)
+    {
+        return;
+    }
+    for &c in &live.colliders[f as usize] {
+        if let Some(co) = physics.colliders.get_mut(c) {
+            co.set_collision_groups(TINY_DEBRIS_GROUPS);
+        }
+    }
 }
