@@ -49,9 +49,15 @@ pub fn write(
     let steps = rows.first().map_or(0, |r| r.steps);
     // (file stem, what the title says, the y axis, the measure)
     let measures: [(&str, &str, &str, Measure); 3] = [
-        ("scale_mean_ms", "mean", "mean step [ms]", |r| Some(r.mean_ms)),
-        ("scale_max_ms", "worst", "worst step [ms]", |r| Some(r.max_ms)),
-        ("scale_cpu_ms", "mean CPU", "CPU per step [ms]", |r| r.cpu_mean_ms),
+        ("scale_mean_ms", "mean", "mean step [ms]", |r| {
+            Some(r.mean_ms)
+        }),
+        ("scale_max_ms", "worst", "worst step [ms]", |r| {
+            Some(r.max_ms)
+        }),
+        ("scale_cpu_ms", "mean CPU", "CPU per step [ms]", |r| {
+            r.cpu_mean_ms
+        }),
     ];
     let mut written = Vec::new();
     for (stem, what, y_label, measure) in measures {
