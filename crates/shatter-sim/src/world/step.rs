@@ -419,7 +419,7 @@ pub(crate) fn split_bodies(
 ) -> Vec<Vec<Vec<u32>>> {
     let mut splits = Vec::new();
     for body in bodies {
-        let new = split::split(
+        let split = split::split(
             physics,
             live,
             object,
@@ -427,20 +427,18 @@ pub(crate) fn split_bodies(
             impulses,
             settings.max_launch_speed,
         );
-        if new.is_empty() {
-            continue;
-        }
-        let mut parts = Vec::new();
-        for h in std::iter::once(body).chain(new) {
-            let fragments: Vec<u32> = (0..live.body.len() as u32)
-                .filter(|&f| live.body[f as usize] == Some(h))
-                .collect();
+        let mut parts = Vec::with_capacity(split.len());
+        for (i, (h, fragments)) in split.into_iter().enumerate() {
             let dynamic = physics.bodies.get(h).is_some_and(|rb| rb.is_dynamic());
-            if fragments.len() == 1 && dynamic && !debris.contains(&(object, h)) {
+            // (A new body cannot be listed yet; only the old one is looked up.)
+            if fragments.len() == 1 && dynamic && (i > 0 || !debris.contains(&(object, h))) {
                 debris.push_back((object, h));
                 tiny_debris(physics, live, fragments[0], settings.tiny_debris);
             }
             parts.push(fragments);
+        }
+        if parts.is_empty() {
+            continue;
         }
         splits.push(parts);
     }
