@@ -1,5 +1,6 @@
 //! Breakable objects, projectiles and explosions: their specs and their preparation.
 
+pub(crate) mod cuboid;
 pub mod prepare;
 pub mod projectile;
 pub mod spec;

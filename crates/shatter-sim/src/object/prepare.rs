@@ -221,52 +221,12 @@ pub fn collision_shapes(fracture: &Fracture, scale: Vec3) -> Vec<Vec<PieceShape>
                     }?;
                     Some(PieceShape {
                         hull,
-                        cuboid: axis_aligned_box(p, s),
+                        cuboid: super::cuboid::axis_aligned_box(p, s),
                     })
                 })
                 .collect()
         })
         .collect()
-}
-
-/// Relative tolerance of [`axis_aligned_box`]: a point may be this far (times the box's
-/// largest edge) from the box's corner, about the rounding of a scaled brick's corners.
-/// Only which collision shape a piece can get depends on it.
-const BOX_TOLERANCE: f64 = 1e-6;
-
-/// The centre and half extents (scaled by `scale`) of `points` when they are the eight
-/// corners of an axis-aligned box with edges of positive length, else `None`.
-fn axis_aligned_box(points: &[DVec3], scale: DVec3) -> Option<(Vec3, Vec3)> {
-    if points.len() != 8 {
-        return None;
-    }
-    let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-    for p in points {
-        lo = lo.min(*p * scale);
-        hi = hi.max(*p * scale);
-    }
-    let edge = hi - lo;
-    if !(edge.min_element() > 0.0 && edge.max_element().is_finite()) {
-        return None;
-    }
-    let tol = BOX_TOLERANCE * edge.max_element();
-    let mut seen = 0u8;
-    for p in points {
-        let p = *p * scale;
-        let mut corner = 0u8;
-        for axis in 0..3 {
-            if (p[axis] - hi[axis]).abs() <= tol {
-                corner |= 1 << axis;
-            } else if (p[axis] - lo[axis]).abs() > tol {
-                return None;
-            }
-        }
-        if seen & (1 << corner) != 0 {
-            return None;
-        }
-        seen |= 1 << corner;
-    }
-    Some((((lo + hi) / 2.0).as_vec3(), (edge / 2.0).as_vec3()))
 }
 
 /// Whether `tris` is a closed surface over `n` points (at least four triangles, every
