@@ -48,6 +48,7 @@ pub use object::{
 pub use rapier3d::math::Pose;
 pub use shatter_geom::shapes::Shape;
 pub use world::{
-    BreakCause, DEFAULT_STRESS_BUDGET, DEFAULT_STRESS_BUILD_BUDGET, DEFAULT_STRESS_SPRING_BUDGET,
-    ObjectId, ProjectileView, RunState, SimEvent, Stats, World, WorldSettings,
+    BreakCause, DEFAULT_MAX_DEBRIS, DEFAULT_MAX_LAUNCH_SPEED, DEFAULT_STRESS_BUDGET,
+    DEFAULT_STRESS_BUILD_BUDGET, DEFAULT_STRESS_SPRING_BUDGET, DEFAULT_TINY_DEBRIS, ObjectId,
+    ProjectileView, RunState, SimEvent, Stats, World, WorldSettings,
 };

@@ -4,7 +4,10 @@
 mod common;
 use common::*;
 use glam::Vec3;
-use shatter_sim::{ObjectId, SimEvent, World};
+use shatter_sim::{
+    BondModel, FractureParams, FractureSource, MethodKind, ObjectId, ObjectSpec, Shape, SimEvent,
+    World, WorldSettings,
+};
 
 fn poses(world: &World, id: ObjectId) -> Vec<(u32, [u32; 7])> {
     world
@@ -96,7 +99,7 @@ fn a_diverging_body_is_removed_and_reported() {
 }
 
 #[test]
-fn the_debris_cap_removes_the_oldest_loose_fragments() {
+fn the_debris_cap_removes_loose_fragments_beyond_it() {
     for model in MODELS {
         let (mut world, id) = wall_world(model, 5_000.0);
         let mut settings = *world.settings();
@@ -110,6 +113,82 @@ fn the_debris_cap_removes_the_oldest_loose_fragments() {
         assert!(s.fragments + s.debris_removed <= 64, "{model:?}");
         assert!(world.fragment_poses(id).len() < 64, "{model:?}");
     }
+}
+
+/// A cube of `pieces` Voronoi cells with bonds that break at a touch, its bottom `height`
+/// above the ground at `x`.
+fn loose_cube(world: &mut World, x: f32, height: f32, pieces: u32) -> ObjectId {
+    let mut spec = ObjectSpec::from_fracture(Default::default(), Vec3::new(x, height + 0.5, 0.0));
+    spec.source = FractureSource::Shape {
+        shape: Shape::Cube,
+        params: FractureParams {
+            method: Some(MethodKind::Voronoi),
+            pieces,
+            seed: 7,
+            ..FractureParams::default()
+        },
+    };
+    spec.break_force = Some(0.01);
+    world.add_object(spec).unwrap()
+}
+
+#[test]
+fn the_debris_cap_removes_the_smallest_settled_pieces_first() {
+    let mut world = World::new(WorldSettings {
+        bond_model: BondModel::Clusters,
+        max_debris: None,
+        ..WorldSettings::default()
+    });
+    // One cube falls apart on the ground at once and settles; another falls from 60 m
+    // and shatters about 3.5 s later, when the first one's pieces are asleep.
+    let settled = loose_cube(&mut world, -3.0, 0.0, 12);
+    let falling = loose_cube(&mut world, 3.0, 60.0, 12);
+    world.start();
+    for _ in 0..190 {
+        world.step();
+    }
+    let asleep = world.stats().sleeping_bodies;
+    let first = world.fragment_poses(settled).len();
+    assert!(asleep >= first, "{asleep} asleep of {first}");
+    // Now a cap that leaves room for two of the falling cube's pieces.
+    let cap = first + 2;
+    let mut settings = *world.settings();
+    settings.max_debris = Some(cap);
+    // (set_settings resets the world: run the same again under the cap.)
+    world.set_settings(settings);
+    world.start();
+    for _ in 0..300 {
+        world.step();
+    }
+    let removed = world.stats().debris_removed;
+    assert!(removed > 0, "nothing was capped");
+    // (The falling cube's intact part, one body with several fragments, is not debris.)
+    let fracture = world.object_fracture(settled).unwrap();
+    let kept: Vec<u32> = world
+        .fragment_poses(settled)
+        .iter()
+        .map(|(f, _)| *f)
+        .collect();
+    let volume = |f: u32| fracture.fragments[f as usize].volume;
+    let gone: Vec<u32> = (0..fracture.fragments.len() as u32)
+        .filter(|f| !kept.contains(f))
+        .collect();
+    assert!(!gone.is_empty(), "no settled piece was removed");
+    let largest_gone = gone.iter().map(|&f| volume(f)).fold(0.0, f64::max);
+    let smallest_kept = kept
+        .iter()
+        .map(|&f| volume(f))
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        largest_gone <= smallest_kept,
+        "removed a settled piece of {largest_gone} m³ before one of {smallest_kept} m³"
+    );
+    // The falling cube's pieces were moving when the cap took the settled ones.
+    assert_eq!(
+        world.fragment_poses(falling).len(),
+        12,
+        "moving pieces went before settled ones"
+    );
 }
 
 #[test]

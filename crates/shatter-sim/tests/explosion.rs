@@ -45,3 +45,41 @@ fn an_explosion_breaks_bonds_inside_its_radius_and_none_far_outside() {
         assert_eq!(far, 0, "{model:?}: {far} bonds broke far outside");
     }
 }
+
+#[test]
+fn an_explosion_throws_no_body_faster_than_the_launch_limit() {
+    for model in MODELS {
+        let (mut world, _) = wall_world(model, 20_000.0);
+        let limit = 50.0;
+        let mut settings = *world.settings();
+        settings.max_launch_speed = limit;
+        world.set_settings(settings);
+        world.start();
+        world.step();
+        // A blast that would throw a 30 kg brick at tens of km/s: past `max_speed`, where
+        // the body would count as diverged.
+        world.explode(ExplosionSpec {
+            position: Vec3::new(0.0, 0.5, 0.3),
+            radius: 1.0,
+            power: 2_000_000.0,
+        });
+        let mut fastest = 0.0f32;
+        for _ in 0..3 {
+            world.step();
+            fastest = fastest.max(world.fastest_speed());
+        }
+        let s = world.stats();
+        assert_eq!(s.diverged, 0, "{model:?}: {} bodies diverged", s.diverged);
+        assert!(s.bonds_broken > 0, "{model:?}: nothing broke");
+        // Gravity adds at most 3 steps × 9.81 m/s² × dt; contacts and joints only take
+        // from the blast's push.
+        assert!(
+            fastest <= limit + 0.5,
+            "{model:?}: fastest body at {fastest} m/s, limit {limit}"
+        );
+        if model == shatter_sim::BondModel::Clusters {
+            // Loose bricks fly at the limit (the joints still hold theirs back a little).
+            assert!(fastest > limit * 0.9, "{model:?}: fastest at {fastest} m/s");
+        }
+    }
+}

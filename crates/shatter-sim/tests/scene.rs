@@ -49,6 +49,27 @@ fn invalid_values_name_the_key() {
             "{bad}: {e}"
         );
     }
+    for bad in ["-1", "2.5", "\"all\""] {
+        let e = err(&format!("[world]\nmax_debris = {bad}\n"));
+        assert!(
+            e.contains("world.max_debris") && e.contains("line 2") && e.contains("none"),
+            "{bad}: {e}"
+        );
+    }
+    for bad in ["-0.1", "nan", "inf", "\"small\""] {
+        let e = err(&format!("[world]\ntiny_debris = {bad}\n"));
+        assert!(
+            e.contains("tiny_debris") && e.contains("line 2"),
+            "{bad}: {e}"
+        );
+    }
+    for bad in ["0", "-5", "nan", "inf"] {
+        let e = err(&format!("[world]\nmax_launch_speed = {bad}\n"));
+        assert!(
+            e.contains("world.max_launch_speed") && e.contains("line 2"),
+            "{bad}: {e}"
+        );
+    }
     let e = err("[[projectiles]]\nshape = \"banana\"\nfrom = [0, 0, 1]\nto = [0, 0, 0]\n");
     assert!(e.contains("projectiles[0].shape"), "{e}");
     assert!(matches!(
@@ -244,6 +265,54 @@ fn the_stress_budget_is_read_and_saved() {
         let world = Scene::parse(text).unwrap().build(None).unwrap();
         let saved = world.to_scene_toml().unwrap();
         assert_eq!(budget(&saved), budget(text), "{saved}");
+    }
+}
+
+#[test]
+fn the_debris_cap_and_the_launch_limit_are_read_and_saved() {
+    use shatter_sim::{DEFAULT_MAX_DEBRIS, DEFAULT_MAX_LAUNCH_SPEED};
+    let settings = |text: &str| {
+        let s = Scene::parse(text).unwrap().settings;
+        (s.max_debris, s.max_launch_speed)
+    };
+    assert_eq!(
+        settings(""),
+        (Some(DEFAULT_MAX_DEBRIS), DEFAULT_MAX_LAUNCH_SPEED)
+    );
+    assert_eq!(settings("[world]\nmax_debris = 0\n").0, Some(0));
+    assert_eq!(settings("[world]\nmax_debris = 300\n").0, Some(300));
+    assert_eq!(settings("[world]\nmax_debris = \"none\"\n").0, None);
+    assert_eq!(settings("[world]\nmax_launch_speed = 40\n").1, 40.0);
+    let boxes = |text: &str| Scene::parse(text).unwrap().settings.box_colliders;
+    assert!(!boxes(""));
+    assert!(boxes("[world]\nbox_colliders = true\n"));
+    let e = err("[world]\nbox_colliders = 1\n");
+    assert!(e.contains("box_colliders"), "{e}");
+    let world = Scene::parse("[world]\nbox_colliders = true\n")
+        .unwrap()
+        .build(None)
+        .unwrap();
+    assert!(boxes(&world.to_scene_toml().unwrap()));
+    let tiny = |text: &str| Scene::parse(text).unwrap().settings.tiny_debris;
+    assert_eq!(tiny(""), shatter_sim::DEFAULT_TINY_DEBRIS);
+    assert_eq!(tiny("[world]\ntiny_debris = 0\n"), 0.0);
+    let world = Scene::parse("[world]\ntiny_debris = 0.125\n")
+        .unwrap()
+        .build(None)
+        .unwrap();
+    assert_eq!(tiny(&world.to_scene_toml().unwrap()), 0.125);
+    let skip = |text: &str| Scene::parse(text).unwrap().settings.skip_held_contacts;
+    assert!(!skip(""));
+    assert!(skip("[world]\nskip_held_contacts = true\n"));
+    let e = err("[world]\nskip_held_contacts = \"yes\"\n");
+    assert!(e.contains("skip_held_contacts"), "{e}");
+    for text in [
+        "[world]\nmax_debris = 300\nmax_launch_speed = 40.5\n",
+        "[world]\nmax_debris = \"none\"\n",
+    ] {
+        let world = Scene::parse(text).unwrap().build(None).unwrap();
+        let saved = world.to_scene_toml().unwrap();
+        assert_eq!(settings(&saved), settings(text), "{saved}");
     }
 }
 

@@ -1,5 +1,5 @@
 //! `shatter bench scale [--sizes N,..] [--models M,..] [--cases C,..] [--seconds T]
-//! [--out DIR] [--json]`: brick worlds of growing size for each bond model and case (a
+//! [--out DIR] [--box-colliders] [--skip-held-contacts] [--json]`: brick worlds of growing size for each bond model and case (a
 //! wall hit by shots, an explosion in a wall, a block shattering on landing), ms per
 //! step (mean and worst), bodies, fragments at rest and diverged bodies, and plots of
 //! ms/step against fragments (measured by `shatter_lab::bench::scale`).
@@ -32,6 +32,14 @@ pub struct BenchScaleArgs {
     /// Folder for the plots (created if missing).
     #[arg(long, value_name = "DIR", default_value = "bench-scale")]
     pub out: PathBuf,
+    /// Bricks collide as cuboids instead of their hulls (the scene key `box_colliders`):
+    /// faster, with other contacts (see docs/scene-format.md).
+    #[arg(long)]
+    pub box_colliders: bool,
+    /// Joints-model bricks held within three bonds skip their contacts (the scene key
+    /// `skip_held_contacts`): faster, fewer bonds break (see docs/scene-format.md).
+    #[arg(long)]
+    pub skip_held_contacts: bool,
     /// Print one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,
@@ -46,6 +54,8 @@ impl BenchScaleArgs {
             cases: self.cases.clone(),
             seconds: self.seconds,
             out: self.out.clone(),
+            box_colliders: self.box_colliders,
+            skip_held_contacts: self.skip_held_contacts,
         }
     }
 }

@@ -29,6 +29,8 @@ pub(crate) struct LiveObject {
     pub anchor_joints: Vec<(u32, ImpulseJointHandle)>,
     /// Stress solver state (clusters objects with anchored fragments).
     pub stress: Option<Box<StressState>>,
+    /// Which fragments the joints hold, whose contacts are skipped (joints model).
+    pub held: crate::bonds::held::Held,
 }
 
 /// The stress solver of an anchored cluster object.
@@ -116,6 +118,11 @@ pub(crate) struct Surface {
     pub density: f32,
     pub friction: f32,
     pub restitution: f32,
+    /// A box-shaped piece collides as a cuboid ([`crate::WorldSettings::box_colliders`]).
+    pub boxes: bool,
+    /// Contacts between fragments the joints hold are skipped
+    /// ([`crate::bonds::held`]; joints model).
+    pub skip_held: bool,
 }
 
 impl LiveObject {
@@ -132,6 +139,10 @@ impl LiveObject {
             joints: vec![None; m],
             anchor_joints: Vec::new(),
             stress: None,
+            held: crate::bonds::held::Held {
+                version: u64::MAX,
+                near: Vec::new(),
+            },
         }
     }
 
@@ -152,19 +163,30 @@ impl LiveObject {
         force_events: Option<f32>,
     ) -> usize {
         let mut made = Vec::new();
-        let exact = self.exact_mass(f, surface.density);
-        for shape in &self.prepared.shapes[f as usize] {
-            let builder = ColliderBuilder::new(shape.clone());
-            // The fragment's exact mass properties sit on its first collider; the others
+        for piece in &self.prepared.shapes[f as usize] {
+            let (builder, offset) = match piece.cuboid.filter(|_| surface.boxes) {
+                Some((centre, half)) => (
+                    ColliderBuilder::cuboid(half.x, half.y, half.z).translation(centre),
+                    centre,
+                ),
+                None => (ColliderBuilder::new(piece.hull.clone()), Vec3::ZERO),
+            };
+            // The fragment's exact mass properties sit on its first collider (in that
+            // collider's frame: the object's, moved by a cuboid's offset); the others
             // only collide. (The hulls' own would be up to a few per cent off where a
             // piece is convex only within the decomposition's tolerance, and a runtime
             // cut or a split would then change the momentum.)
             let mprops = if made.is_empty() {
-                exact
+                self.exact_mass(f, surface.density, offset)
             } else {
                 MassProperties::default()
             };
             let mut builder = builder
+                .active_hooks(if surface.skip_held {
+                    ActiveHooks::FILTER_CONTACT_PAIRS
+                } else {
+                    ActiveHooks::empty()
+                })
                 .mass_properties(mprops)
                 .friction(surface.friction)
                 .restitution(surface.restitution)
@@ -184,13 +206,15 @@ impl LiveObject {
         count
     }
 
-    /// Fragment `f`'s mass properties at `density` in the object's frame: mass, centroid
-    /// and inertia from its exact volume and inertia tensor.
-    fn exact_mass(&self, f: u32, density: f32) -> MassProperties {
+    /// Fragment `f`'s mass properties at `density` in the object's frame moved by
+    /// `offset` (a collider's frame): mass, centroid and inertia from its exact volume
+    /// and inertia tensor.
+    fn exact_mass(&self, f: u32, density: f32, offset: Vec3) -> MassProperties {
         let fragment = &self.prepared.fracture.fragments[f as usize];
         let mass = self.prepared.masses[f as usize];
         let i = fragment.inertia * f64::from(density);
-        MassProperties::with_inertia_matrix(fragment.centroid.as_vec3(), mass, i.as_mat3())
+        let centroid = fragment.centroid - offset.as_dvec3();
+        MassProperties::with_inertia_matrix(centroid.as_vec3(), mass, i.as_mat3())
     }
 
     /// Marks bond `b` broken by an impact (idempotent).

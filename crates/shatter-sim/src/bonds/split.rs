@@ -31,15 +31,17 @@ pub(crate) fn world_com(rb: &RigidBody) -> Vec3 {
         .transform_point(rb.mass_properties().local_mprops.local_com)
 }
 
-/// Splits `body` into its components; returns the new bodies (the first component keeps
-/// `body`). `impulses` are the impulses the fragments received this step.
+/// Splits `body` into its components; returns each component's body and fragments
+/// (ascending), the first keeping `body`, or nothing when `body` does not split. `impulses` are the impulses the fragments received this step; a part freed
+/// from a fixed body is launched by them at most at `max_launch` m/s.
 pub(crate) fn split(
     world: &mut PhysicsWorld,
     live: &mut LiveObject,
     object: u32,
     body: RigidBodyHandle,
     impulses: &BTreeMap<u32, (Vec3, f32)>,
-) -> Vec<RigidBodyHandle> {
+    max_launch: f32,
+) -> Vec<(RigidBodyHandle, Vec<u32>)> {
     let parts = components(live, body);
     let Some(old) = world.bodies.get(body) else {
         return Vec::new();
@@ -80,19 +82,22 @@ pub(crate) fn split(
         if rb.body_type() != ty {
             rb.set_body_type(ty, true);
         }
-        rb.recompute_mass_properties_from_colliders(colliders);
         if anchored {
+            // A fixed part's mass is not used before Rapier's next step, which recomputes
+            // it (its colliders changed): doing it here too would cost a second pass over
+            // what is often the whole anchored wall.
             continue;
         }
+        rb.recompute_mass_properties_from_colliders(colliders);
         if was_dynamic {
             let ci = world_com(rb);
             rb.set_linvel(inherited_velocity(v, w, c, ci), true);
             rb.set_angvel(w, true);
         } else {
-            let v0 = launch_velocity(impulses, part, rb.mass());
+            let v0 = launch_velocity(impulses, part, rb.mass()).clamp_length_max(max_launch);
             rb.set_linvel(v0, true);
             rb.set_angvel(Vec3::ZERO, true);
         }
     }
-    handles[1..].to_vec()
+    handles.into_iter().zip(parts).collect()
 }

@@ -21,12 +21,14 @@ use crate::runtime::FractureTiming;
 pub struct Prepared {
     /// The scaled fracture (meshes for the renderer, bonds for the sim).
     pub fracture: Arc<Fracture>,
-    /// Per fragment, the collision shapes of its convex pieces (their hulls, built once:
-    /// a body built again, or a fragment attached to another body, shares them). A piece
-    /// whose points span no volume has none.
-    pub shapes: Vec<Vec<SharedShape>>,
+    /// Per fragment, the collision shapes of its convex pieces (their hulls, and the box
+    /// of a piece that is one; built once: a body built again, or a fragment attached to
+    /// another body, shares them). A piece whose points span no volume has none.
+    pub shapes: Vec<Vec<PieceShape>>,
     /// Per fragment, its mass (volume × density).
     pub masses: Vec<f32>,
+    /// Per fragment, the diagonal of its mesh's bounding box (m).
+    pub sizes: Vec<f32>,
     /// Per fragment, whether it is bonded to the world (anchored objects only).
     pub anchored: Vec<bool>,
     /// Per fragment, the indices of its bonds.
@@ -184,11 +186,23 @@ pub fn prepare(fracture: &Fracture, scale: Vec3, density: f32, anchored: bool) -
     prepare_with(fracture, scale, density, anchored, None)
 }
 
+/// One convex piece's collision shapes, in the object's frame.
+#[derive(Debug, Clone)]
+pub struct PieceShape {
+    /// The piece's hull.
+    pub hull: SharedShape,
+    /// Where the piece is an axis-aligned box (a grid's brick): its centre and half
+    /// extents, for a cuboid collider ([`WorldSettings::box_colliders`]).
+    ///
+    /// [`WorldSettings::box_colliders`]: crate::WorldSettings::box_colliders
+    pub cuboid: Option<(Vec3, Vec3)>,
+}
+
 /// The collision shapes of `fracture`'s fragments at scale `scale` (see
 /// [`Prepared::shapes`]): the hull of each convex piece, built from the hull's triangles
 /// where the fragment has them ([`Fragment::convex_hulls`]: a closed surface over the
-/// piece's points), else computed from the points.
-pub fn collision_shapes(fracture: &Fracture, scale: Vec3) -> Vec<Vec<SharedShape>> {
+/// piece's points), else computed from the points; and the box of a piece that is one.
+pub fn collision_shapes(fracture: &Fracture, scale: Vec3) -> Vec<Vec<PieceShape>> {
     let s = scale.as_dvec3();
     fracture
         .fragments
@@ -200,11 +214,15 @@ pub fn collision_shapes(fracture: &Fracture, scale: Vec3) -> Vec<Vec<SharedShape
                 .filter_map(|(k, p)| {
                     let points = || p.iter().map(|v| (*v * s).as_vec3()).collect::<Vec<Vec3>>();
                     let hull = f.convex_hulls.get(k).map(Vec::as_slice);
-                    match hull.filter(|tris| closed_over(tris, p.len())) {
+                    let hull = match hull.filter(|tris| closed_over(tris, p.len())) {
                         Some(tris) => SharedShape::convex_mesh(points(), tris)
                             .or_else(|| SharedShape::convex_hull(&points())),
                         None => SharedShape::convex_hull(&points()),
-                    }
+                    }?;
+                    Some(PieceShape {
+                        hull,
+                        cuboid: super::cuboid::axis_aligned_box(p, s),
+                    })
                 })
                 .collect()
         })
@@ -253,7 +271,7 @@ pub(crate) fn prepare_with(
     scale: Vec3,
     density: f32,
     anchored: bool,
-    shapes: Option<Vec<Vec<SharedShape>>>,
+    shapes: Option<Vec<Vec<PieceShape>>>,
 ) -> Prepared {
     let s = scale.as_dvec3();
     let shapes = shapes
@@ -279,6 +297,14 @@ pub(crate) fn prepare_with(
         }
     }
     let anchored = anchored_fragments(&fragments, anchored);
+    let sizes = fragments
+        .iter()
+        .map(|f| {
+            f.mesh
+                .bounds()
+                .map_or(0.0, |(lo, hi)| (hi - lo).length() as f32)
+        })
+        .collect();
     Prepared {
         fracture: Arc::new(Fracture {
             fragments,
@@ -288,6 +314,7 @@ pub(crate) fn prepare_with(
         }),
         shapes,
         masses,
+        sizes,
         anchored,
         adjacency,
     }
@@ -413,7 +440,8 @@ mod tests {
         let shapes = collision_shapes(&cut, Vec3::ONE);
         for (f, s) in cut.fragments.iter().zip(&shapes) {
             assert_eq!(s.len(), f.convex_pieces.len());
-            for (shape, points) in s.iter().zip(&f.convex_pieces) {
+            for (piece, points) in s.iter().zip(&f.convex_pieces) {
+                let shape = &piece.hull;
                 assert_eq!(shape.shape_type(), ShapeType::ConvexPolyhedron);
                 let poly = shape.as_convex_polyhedron().unwrap();
                 // From the hull's triangles: every point of the piece is a corner.

@@ -39,8 +39,21 @@ pub struct WorldSection {
     pub bond_model: Option<Spanned<String>>,
     /// Static ground at y = 0 (default true).
     pub ground: Option<bool>,
-    /// Cap on debris bodies.
-    pub max_debris: Option<usize>,
+    /// Box-shaped pieces collide as cuboids (default false).
+    pub box_colliders: Option<bool>,
+    /// Joints-model fragments held within three bonds skip their contacts (default false).
+    pub skip_held_contacts: Option<bool>,
+    /// Debris bodies kept: an integer ≥ 0, or `"none"` (no cap). Default
+    /// [`crate::world::DEFAULT_MAX_DEBRIS`].
+    pub max_debris: Option<Spanned<toml::Value>>,
+    /// Fastest an explosion throws a body (m/s): a float > 0. Default
+    /// [`crate::world::DEFAULT_MAX_LAUNCH_SPEED`].
+    #[serde(default, deserialize_with = "values::opt_spanned_f32")]
+    pub max_launch_speed: Option<Spanned<f32>>,
+    /// Debris under this size (m) does not collide with such debris: a float ≥ 0.
+    /// Default [`crate::world::DEFAULT_TINY_DEBRIS`].
+    #[serde(default, deserialize_with = "values::opt_spanned_f32")]
+    pub tiny_debris: Option<Spanned<f32>>,
     /// Stress-solver iterations per object per step: an integer ≥ 1, or `"none"` (solve
     /// to convergence every step). Default [`crate::world::DEFAULT_STRESS_BUDGET`].
     pub stress_budget: Option<Spanned<toml::Value>>,

@@ -57,8 +57,9 @@ impl Scene {
         let file: SceneFile = toml::from_str(text).map_err(|e| {
             let (line, column) = e.span().map_or((0, 0), |s| line_col(text, s.start));
             let mut message = e.message().trim().to_string();
-            // Type errors point at the value: name the key written before it.
-            if !message.contains('`')
+            // Type errors point at the value: name the key written before it (an unknown or
+            // missing field's message names it already).
+            if !message.contains("field `")
                 && let Some(key) = text
                     .lines()
                     .nth(line.saturating_sub(1))
@@ -96,7 +97,44 @@ impl Scene {
         if let Some(g) = w.ground {
             settings.ground = g;
         }
-        settings.max_debris = w.max_debris;
+        if let Some(b) = w.box_colliders {
+            settings.box_colliders = b;
+        }
+        if let Some(b) = w.skip_held_contacts {
+            settings.skip_held_contacts = b;
+        }
+        if let Some(m) = &w.max_debris {
+            settings.max_debris = match m.get_ref() {
+                toml::Value::Integer(n) if *n >= 0 => Some(*n as usize),
+                toml::Value::String(s) if s == "none" => None,
+                other => {
+                    return Err(SimError::invalid(
+                        ctx.key("world.max_debris", m),
+                        format!("must be an integer ≥ 0 or \"none\", got {other}"),
+                    ));
+                }
+            };
+        }
+        if let Some(v) = &w.max_launch_speed {
+            let speed = *v.get_ref();
+            if !(speed.is_finite() && speed > 0.0) {
+                return Err(SimError::invalid(
+                    ctx.key("world.max_launch_speed", v),
+                    format!("must be a positive speed in m/s, got {speed}"),
+                ));
+            }
+            settings.max_launch_speed = speed;
+        }
+        if let Some(v) = &w.tiny_debris {
+            let size = *v.get_ref();
+            if !(size.is_finite() && size >= 0.0) {
+                return Err(SimError::invalid(
+                    ctx.key("world.tiny_debris", v),
+                    format!("must be a size ≥ 0 in metres, got {size}"),
+                ));
+            }
+            settings.tiny_debris = size;
+        }
         for (key, value, setting) in [
             (
                 "world.stress_budget",

@@ -4,9 +4,9 @@
 use std::sync::Arc;
 
 use glam::{DVec3, Vec3};
-use rapier3d::prelude::SharedShape;
 use shatter_geom::fracture::{Fracture, FractureError};
 
+use crate::object::prepare::PieceShape;
 use crate::runtime;
 use crate::world::settings::ObjectId;
 
@@ -85,7 +85,7 @@ impl CutInput {
 pub(crate) struct CutResult {
     pub fracture: Fracture,
     /// [`crate::object::prepare::collision_shapes`] of `fracture` (unscaled).
-    pub shapes: Vec<Vec<SharedShape>>,
+    pub shapes: Vec<Vec<PieceShape>>,
 }
 
 /// The cut's computation.

@@ -12,7 +12,8 @@ mod upkeep;
 
 pub use query::ProjectileView;
 pub use settings::{
-    BreakCause, DEFAULT_STRESS_BUDGET, DEFAULT_STRESS_BUILD_BUDGET, DEFAULT_STRESS_SPRING_BUDGET,
-    ObjectId, RunState, SimEvent, Stats, WorldSettings,
+    BreakCause, DEFAULT_MAX_DEBRIS, DEFAULT_MAX_LAUNCH_SPEED, DEFAULT_STRESS_BUDGET,
+    DEFAULT_STRESS_BUILD_BUDGET, DEFAULT_STRESS_SPRING_BUDGET, DEFAULT_TINY_DEBRIS, ObjectId,
+    RunState, SimEvent, Stats, WorldSettings,
 };
 pub use state::World;

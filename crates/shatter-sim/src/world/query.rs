@@ -124,6 +124,27 @@ impl World {
             .collect()
     }
 
+    /// Pairs of colliders in contact after the last step (Rapier's narrow phase, pairs
+    /// with at least one active contact).
+    pub fn touching_pairs(&self) -> usize {
+        self.physics
+            .narrow_phase
+            .contact_pairs()
+            .filter(|p| p.has_any_active_contact())
+            .count()
+    }
+
+    /// The linear speed of the fastest dynamic body (fragments' and projectiles'; m/s),
+    /// 0 without any.
+    pub fn fastest_speed(&self) -> f32 {
+        self.physics
+            .bodies
+            .iter()
+            .filter(|(_, rb)| rb.is_dynamic())
+            .map(|(_, rb)| rb.linvel().length())
+            .fold(0.0, f32::max)
+    }
+
     /// Projectiles in flight.
     pub fn projectiles(&self) -> Vec<ProjectileView<'_>> {
         self.projectiles

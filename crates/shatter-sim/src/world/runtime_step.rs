@@ -92,11 +92,8 @@ impl World {
             return None;
         }
         let body = (*live.body.get(f as usize)?)?;
-        if live.body.iter().filter(|b| **b == Some(body)).count() != 1
-            || self.cuts.iter().any(|c| c.object == id && c.fragment == f)
-        {
-            return None;
-        }
+        // The cheap tests first: most hits on most objects cut nothing, and counting the
+        // fragments on the body costs a pass over the object's fragments.
         let size = runtime::fragment_size(&record.prepared.fracture, f as usize);
         if !record.spec.runtime.cuts(record.level, size) {
             return None;
@@ -108,6 +105,11 @@ impl World {
             .unwrap_or(record.spec.effective_break_force() * self.settings.dt);
         let impulse = hit.impulse * sign;
         if impulse.length() < threshold {
+            return None;
+        }
+        if live.body.iter().filter(|b| **b == Some(body)).count() != 1
+            || self.cuts.iter().any(|c| c.object == id && c.fragment == f)
+        {
             return None;
         }
         let rb = self.physics.bodies.get(body)?;

@@ -278,6 +278,8 @@ impl World {
             density: spec.material.density,
             friction: spec.material.friction,
             restitution: spec.material.restitution,
+            boxes: self.settings.box_colliders,
+            skip_held: model == BondModel::Joints && self.settings.skip_held_contacts,
         };
         match model {
             BondModel::Joints => {

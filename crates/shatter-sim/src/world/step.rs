@@ -9,10 +9,12 @@ use glam::{Quat, Vec3};
 use rapier3d::prelude::*;
 
 use crate::bonds::clusters::{self, Loads};
+use crate::bonds::held::{self, HeldContacts};
 use crate::bonds::live::LiveObject;
 use crate::bonds::tags::{Kind, tag, untag};
 use crate::bonds::{joints, split};
 use crate::object::{BondModel, ExplosionSpec, ProjectileShape, ProjectileSpec};
+use crate::world::settings::WorldSettings;
 use crate::world::settings::{BreakCause, SimEvent};
 use crate::world::state::{Action, ObjectId, Projectile, RunState, World};
 
@@ -127,7 +129,20 @@ impl World {
             }
         }
         let hits = HitCollector::default();
-        self.physics.step_with_events(&(), &hits);
+        for record in self.objects.values_mut() {
+            if let Some(live) = record.live.as_mut() {
+                held::update(live);
+            }
+        }
+        let filter = HeldContacts {
+            objects: self
+                .objects
+                .iter()
+                .filter_map(|(id, r)| r.live.as_ref().map(|live| (id.0, live)))
+                .filter(|(_, live)| live.model == BondModel::Joints)
+                .collect(),
+        };
+        self.physics.step_with_events(&filter, &hits);
         self.stats.steps += 1;
         self.stats.time = self.stats.steps as f64 * self.settings.dt as f64;
         let hits = hits.0.into_inner().unwrap_or_default();
@@ -164,6 +179,7 @@ impl World {
                     && !live.anchor_joints.iter().any(|(a, _)| *a as usize == f);
                 if loose && !self.debris.contains(&(id.0, h)) {
                     self.debris.push_back((id.0, h));
+                    tiny_debris(&mut self.physics, live, f as u32, self.settings.tiny_debris);
                 }
             }
         }
@@ -265,6 +281,7 @@ impl World {
                 object,
                 bodies,
                 &loads.impulses,
+                &self.settings,
             );
             for parts in splits {
                 self.events.push(SimEvent::Split { object, parts });
@@ -333,7 +350,9 @@ impl World {
 
     /// Sets off an explosion now: cluster bonds in the radius are loaded (and may break),
     /// then every dynamic body whose centre of mass is in the radius gets an impulse
-    /// `power·(1 − d/radius)` pointing away from the centre.
+    /// `power·(1 − d/radius)` pointing away from the centre, less where it would make
+    /// the body faster than [`WorldSettings::max_launch_speed`](crate::WorldSettings)
+    /// (then it leaves at that speed, in the direction the full impulse gave it).
     pub fn explode(&mut self, spec: ExplosionSpec) {
         let mut loads: BTreeMap<u32, Loads> = BTreeMap::new();
         for (id, record) in &self.objects {
@@ -370,9 +389,14 @@ impl World {
                 pushes.push((h, dir * spec.power * (1.0 - x / spec.radius)));
             }
         }
+        let limit = self.settings.max_launch_speed;
         for (h, impulse) in pushes {
             if let Some(rb) = self.physics.bodies.get_mut(h) {
+                let most = limit.max(rb.linvel().length());
                 rb.apply_impulse(impulse, true);
+                if rb.linvel().length() > most {
+                    rb.set_linvel(rb.linvel().clamp_length_max(most), true);
+                }
             }
         }
         self.update_counts();
@@ -381,7 +405,9 @@ impl World {
 
 /// Splits each of `bodies` into its components and lists the new single-fragment dynamic
 /// bodies as debris. Returns, per body that split, the fragments of each of its parts
-/// (the part that kept the old body first).
+/// (the part that kept the old body first). Parts freed from a fixed body are launched at
+/// most at `settings.max_launch_speed`; tiny debris is put in its collision group
+/// ([`tiny_debris`]).
 pub(crate) fn split_bodies(
     physics: &mut PhysicsWorld,
     debris: &mut std::collections::VecDeque<(u32, RigidBodyHandle)>,
@@ -389,25 +415,58 @@ pub(crate) fn split_bodies(
     object: u32,
     bodies: Vec<RigidBodyHandle>,
     impulses: &BTreeMap<u32, (Vec3, f32)>,
+    settings: &WorldSettings,
 ) -> Vec<Vec<Vec<u32>>> {
     let mut splits = Vec::new();
     for body in bodies {
-        let new = split::split(physics, live, object, body, impulses);
-        if new.is_empty() {
-            continue;
-        }
-        let mut parts = Vec::new();
-        for h in std::iter::once(body).chain(new) {
-            let fragments: Vec<u32> = (0..live.body.len() as u32)
-                .filter(|&f| live.body[f as usize] == Some(h))
-                .collect();
+        let split = split::split(
+            physics,
+            live,
+            object,
+            body,
+            impulses,
+            settings.max_launch_speed,
+        );
+        let mut parts = Vec::with_capacity(split.len());
+        for (i, (h, fragments)) in split.into_iter().enumerate() {
             let dynamic = physics.bodies.get(h).is_some_and(|rb| rb.is_dynamic());
-            if fragments.len() == 1 && dynamic && !debris.contains(&(object, h)) {
+            // (A new body cannot be listed yet; only the old one is looked up.)
+            if fragments.len() == 1 && dynamic && (i > 0 || !debris.contains(&(object, h))) {
                 debris.push_back((object, h));
+                tiny_debris(physics, live, fragments[0], settings.tiny_debris);
             }
             parts.push(fragments);
+        }
+        if parts.is_empty() {
+            continue;
         }
         splits.push(parts);
     }
     splits
+}
+
+/// Collision group of tiny debris ([`WorldSettings::tiny_debris`]): its members do not
+/// collide with each other, only with everything else (whose groups are the default, all
+/// memberships and all filters).
+pub(crate) const TINY_DEBRIS_GROUPS: InteractionGroups = InteractionGroups::new(
+    Group::GROUP_32,
+    Group::ALL.difference(Group::GROUP_32),
+    InteractionTestMode::And,
+);
+
+/// Puts fragment `f`'s colliders in the tiny-debris group when its size is under `size`.
+pub(crate) fn tiny_debris(physics: &mut PhysicsWorld, live: &LiveObject, f: u32, size: f32) {
+    if live
+        .prepared
+        .sizes
+        .get(f as usize)
+        .is_none_or(|&s| s >= size)
+    {
+        return;
+    }
+    for &c in &live.colliders[f as usize] {
+        if let Some(co) = physics.colliders.get_mut(c) {
+            co.set_collision_groups(TINY_DEBRIS_GROUPS);
+        }
+    }
 }

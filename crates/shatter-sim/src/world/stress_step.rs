@@ -110,6 +110,7 @@ impl World {
                 id.0,
                 bodies,
                 &impulses,
+                &self.settings,
             );
             for parts in splits {
                 self.events.push(SimEvent::Split {

@@ -80,21 +80,51 @@ impl World {
         }
     }
 
-    /// Removes the oldest debris beyond the cap.
+    /// Removes debris beyond the cap ([`WorldSettings::max_debris`]): settled (sleeping)
+    /// pieces before moving ones, the smallest first, the oldest of equals first.
+    ///
+    /// [`WorldSettings::max_debris`]: crate::WorldSettings::max_debris
     pub(super) fn cap_debris(&mut self) {
         let Some(cap) = self.settings.max_debris else {
             return;
         };
         self.debris
             .retain(|(_, h)| self.physics.bodies.contains(*h));
-        while self.debris.len() > cap {
-            let Some((object, h)) = self.debris.pop_front() else {
-                break;
-            };
-            self.forget_body(object, h);
-            self.physics.remove_body(h);
-            self.stats.debris_removed += 1;
+        if self.debris.len() <= cap {
+            return;
         }
+        let pieces: Vec<DebrisPiece> = self
+            .debris
+            .iter()
+            .map(|&(_, h)| {
+                let rb = &self.physics.bodies[h];
+                let volume = match untag(rb.user_data) {
+                    Some((Kind::Fragment, o, f)) => self
+                        .objects
+                        .get(&ObjectId(o))
+                        .and_then(|r| r.live.as_ref())
+                        .and_then(|live| live.prepared.fracture.fragments.get(f as usize))
+                        .map_or(0.0, |fragment| fragment.volume),
+                    _ => 0.0,
+                };
+                DebrisPiece {
+                    settled: rb.is_sleeping(),
+                    volume,
+                }
+            })
+            .collect();
+        let remove = debris_to_remove(&pieces, cap);
+        let mut kept = std::collections::VecDeque::with_capacity(cap);
+        for (i, (object, h)) in std::mem::take(&mut self.debris).into_iter().enumerate() {
+            if remove.binary_search(&i).is_ok() {
+                self.forget_body(object, h);
+                self.physics.remove_body(h);
+                self.stats.debris_removed += 1;
+            } else {
+                kept.push_back((object, h));
+            }
+        }
+        self.debris = kept;
     }
 
     /// Drops the fragments of `object` that body `h` carries (before `h` is removed).
@@ -110,5 +140,64 @@ impl World {
                 }
             }
         }
+    }
+}
+
+/// What the debris cap ranks a debris body by.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct DebrisPiece {
+    /// At rest (Rapier put it to sleep).
+    pub settled: bool,
+    /// Its fragment's volume (m³).
+    pub volume: f64,
+}
+
+/// Which of `pieces` (oldest first) go so that at most `cap` stay, ascending: settled
+/// pieces before moving ones, the smallest first, the oldest of equals first.
+pub(crate) fn debris_to_remove(pieces: &[DebrisPiece], cap: usize) -> Vec<usize> {
+    let excess = pieces.len().saturating_sub(cap);
+    let mut order: Vec<usize> = (0..pieces.len()).collect();
+    order.sort_by(|&a, &b| {
+        let (p, q) = (pieces[a], pieces[b]);
+        q.settled
+            .cmp(&p.settled)
+            .then(p.volume.total_cmp(&q.volume))
+            .then(a.cmp(&b))
+    });
+    let mut remove = order[..excess].to_vec();
+    remove.sort_unstable();
+    remove
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn piece(settled: bool, volume: f64) -> DebrisPiece {
+        DebrisPiece { settled, volume }
+    }
+
+    #[test]
+    fn the_cap_takes_settled_pieces_first_and_the_smallest_of_them() {
+        let pieces = [
+            piece(false, 0.1),
+            piece(true, 3.0),
+            piece(true, 1.0),
+            piece(false, 0.2),
+            piece(true, 2.0),
+        ];
+        assert_eq!(debris_to_remove(&pieces, 4), vec![2]);
+        assert_eq!(debris_to_remove(&pieces, 2), vec![1, 2, 4]);
+        // All settled ones gone, then the smallest moving one.
+        assert_eq!(debris_to_remove(&pieces, 1), vec![0, 1, 2, 4]);
+        assert_eq!(debris_to_remove(&pieces, 0), vec![0, 1, 2, 3, 4]);
+        assert!(debris_to_remove(&pieces, 5).is_empty());
+        assert!(debris_to_remove(&pieces, 9).is_empty());
+    }
+
+    #[test]
+    fn equal_pieces_go_oldest_first() {
+        let pieces = [piece(true, 1.0); 4];
+        assert_eq!(debris_to_remove(&pieces, 2), vec![0, 1]);
     }
 }

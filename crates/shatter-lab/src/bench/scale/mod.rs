@@ -21,7 +21,7 @@ use shatter_sim::{BondModel, Pose};
 
 #[doc(hidden)]
 pub use worlds::build as build_world;
-pub use worlds::{ScaleCase, bricks, grid_for};
+pub use worlds::{ScaleCase, Speedups, bricks, grid_for};
 
 use crate::bench::step::steps_of;
 use crate::context::Context;
@@ -42,6 +42,12 @@ pub struct BenchScaleOptions {
     pub seconds: f64,
     /// Folder for the plots (created if missing).
     pub out: PathBuf,
+    /// Bricks collide as cuboids instead of their hulls
+    /// ([`WorldSettings::box_colliders`](shatter_sim::WorldSettings::box_colliders)).
+    pub box_colliders: bool,
+    /// Joints-model fragments held within three bonds skip their contacts
+    /// ([`WorldSettings::skip_held_contacts`](shatter_sim::WorldSettings::skip_held_contacts)).
+    pub skip_held_contacts: bool,
 }
 
 /// The largest world one run may ask for (the estimate refuses what the machine cannot
@@ -110,6 +116,11 @@ pub struct BenchScaleReport {
     pub seconds: f64,
     /// Steps per run.
     pub steps: u64,
+    /// Whether the bricks collided as cuboids (`--box-colliders`), not as their hulls.
+    pub box_colliders: bool,
+    /// Whether joints-model bricks held within three bonds skipped their contacts
+    /// (`--skip-held-contacts`).
+    pub skip_held_contacts: bool,
     /// The estimate checked before the runs (s).
     pub estimated_seconds: f64,
     /// Wall-clock seconds of all runs (building included).
@@ -128,6 +139,8 @@ struct ScaleConfig {
     cases: Vec<ScaleCase>,
     seconds: f64,
     steps: u64,
+    box_colliders: bool,
+    skip_held_contacts: bool,
 }
 
 impl ScaleConfig {
@@ -172,7 +185,17 @@ impl ScaleConfig {
             cases,
             seconds: o.seconds,
             steps: steps_of(o.seconds),
+            box_colliders: o.box_colliders,
+            skip_held_contacts: o.skip_held_contacts,
         })
+    }
+
+    /// The world settings the options change (`--box-colliders`, `--skip-held-contacts`).
+    fn settings(&self) -> worlds::Speedups {
+        worlds::Speedups {
+            box_colliders: self.box_colliders,
+            skip_held_contacts: self.skip_held_contacts,
+        }
     }
 
     /// Every run, in the report's order.
@@ -272,7 +295,7 @@ fn measure(
 ) -> Result<ScaleRow, LabError> {
     ctx.progress.check()?;
     let t0 = Instant::now();
-    let (mut world, id) = worlds::build(case, n, model, config.seconds)?;
+    let (mut world, id) = worlds::build(case, n, model, config.seconds, config.settings())?;
     let build_ms = t0.elapsed().as_secs_f64() * 1e3;
     world.start();
     let steps = config.steps;
@@ -365,6 +388,8 @@ pub fn run(
     Ok(BenchScaleReport {
         seconds: config.seconds,
         steps: config.steps,
+        box_colliders: config.box_colliders,
+        skip_held_contacts: config.skip_held_contacts,
         estimated_seconds: estimate.seconds,
         measured_seconds,
         rows,

@@ -47,20 +47,26 @@ pub fn write(
     progress: &Progress,
 ) -> Result<Vec<PathBuf>, LabError> {
     let steps = rows.first().map_or(0, |r| r.steps);
-    let measures: [(&str, &str, Measure); 3] = [
-        ("scale_mean_ms", "mean", |r| Some(r.mean_ms)),
-        ("scale_max_ms", "worst", |r| Some(r.max_ms)),
-        ("scale_cpu_ms", "CPU of the", |r| r.cpu_mean_ms),
+    // (file stem, what the title says, the y axis, the measure)
+    let measures: [(&str, &str, &str, Measure); 3] = [
+        ("scale_mean_ms", "mean", "mean step [ms]", |r| {
+            Some(r.mean_ms)
+        }),
+        ("scale_max_ms", "worst", "worst step [ms]", |r| {
+            Some(r.max_ms)
+        }),
+        ("scale_cpu_ms", "mean CPU", "CPU per step [ms]", |r| {
+            r.cpu_mean_ms
+        }),
     ];
     let mut written = Vec::new();
-    for (stem, what, measure) in measures {
+    for (stem, what, y_label, measure) in measures {
         let series = lines(rows, cases, measure);
         if series.is_empty() {
             continue;
         }
         let title = format!("Step time against fragments ({what} of {steps} steps)");
-        let y_label = format!("{what} step [ms]").replace("CPU of the step", "CPU per step");
-        let plot = LinePlot::new(&series, &title, "fragments", &y_label);
+        let plot = LinePlot::new(&series, &title, "fragments", y_label);
         written.extend(output::write_plot(&plot, &dir.join(stem), progress)?);
     }
     Ok(written)

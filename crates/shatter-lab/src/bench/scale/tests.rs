@@ -12,6 +12,8 @@ fn options(dir: &std::path::Path) -> BenchScaleOptions {
         cases: vec!["shots".into(), "explosion".into(), "landing".into()],
         seconds: 0.1,
         out: dir.to_path_buf(),
+        box_colliders: false,
+        skip_held_contacts: false,
     }
 }
 

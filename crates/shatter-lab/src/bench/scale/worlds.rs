@@ -98,17 +98,30 @@ pub fn bricks(grid: [u32; 3]) -> usize {
     grid.iter().map(|&c| c as usize).product()
 }
 
+/// The world settings a scale run may change from the defaults.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Speedups {
+    /// [`WorldSettings::box_colliders`].
+    pub box_colliders: bool,
+    /// [`WorldSettings::skip_held_contacts`].
+    pub skip_held_contacts: bool,
+}
+
 /// A world of `case` with about `n` bricks bonded by `model`, and the object's id;
-/// `seconds` is the length of the run (the shots are scheduled up to it).
+/// `seconds` is the length of the run (the shots are scheduled up to it); `speedups`
+/// are the settings changed from the defaults.
 pub fn build(
     case: ScaleCase,
     n: usize,
     model: BondModel,
     seconds: f64,
+    speedups: Speedups,
 ) -> Result<(World, ObjectId), LabError> {
     let grid = grid_for(case, n);
     let mut world = World::new(WorldSettings {
         bond_model: model,
+        box_colliders: speedups.box_colliders,
+        skip_held_contacts: speedups.skip_held_contacts,
         ..WorldSettings::default()
     });
     let cells = Vec3::new(grid[0] as f32, grid[1] as f32, grid[2] as f32);
@@ -209,7 +222,14 @@ mod tests {
 
     #[test]
     fn a_world_holds_the_grid_s_bricks_and_its_shots() {
-        let (world, _) = build(ScaleCase::Shots, 200, BondModel::Clusters, 1.0).unwrap();
+        let (world, _) = build(
+            ScaleCase::Shots,
+            200,
+            BondModel::Clusters,
+            1.0,
+            Speedups::default(),
+        )
+        .unwrap();
         assert_eq!(
             world.stats().fragments,
             bricks(grid_for(ScaleCase::Shots, 200))
