@@ -5,6 +5,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
+use super::error::InvalidFracture;
 use super::normalize::Frame;
 use super::types::Fracture;
 use crate::TriMesh;
@@ -13,124 +14,6 @@ use crate::util::FastMap;
 
 /// Relative tolerance of [`Fracture::validate`]'s volume checks.
 pub const VOLUME_TOLERANCE: f64 = 1e-9;
-
-/// A violated invariant, found by [`Fracture::validate`]. Fragments, triangles and bonds
-/// are indices into the [`Fracture`]; edges are given by their two end positions.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum InvalidFracture {
-    /// The fracture has no fragment.
-    #[error("no fragments")]
-    Empty,
-    /// A triangle index past the fragment's vertices, or a non-finite coordinate.
-    #[error(
-        "fragment {fragment}: triangle {triangle} has a vertex index out of range or a non-finite vertex"
-    )]
-    Malformed {
-        /// The fragment.
-        fragment: usize,
-        /// The triangle.
-        triangle: usize,
-    },
-    /// `interior` does not have one flag per triangle.
-    #[error("fragment {fragment}: {flags} interior flags for {triangles} triangles")]
-    InteriorFlags {
-        /// The fragment.
-        fragment: usize,
-        /// Length of `interior`.
-        flags: usize,
-        /// Number of triangles.
-        triangles: usize,
-    },
-    /// A triangle of zero area (a repeated position, or collinear corners, exactly).
-    #[error("fragment {fragment}: triangle {triangle} is degenerate")]
-    Degenerate {
-        /// The fragment.
-        fragment: usize,
-        /// The triangle.
-        triangle: usize,
-    },
-    /// Two triangles on the same three positions (equal or opposite winding: a double
-    /// face left inside the fragment).
-    #[error(
-        "fragment {fragment}: triangles {first} and {second} have the same corners ({})",
-        if *.opposite { "a back-to-back pair" } else { "a duplicate" }
-    )]
-    DuplicateTriangles {
-        /// The fragment.
-        fragment: usize,
-        /// The first triangle.
-        first: usize,
-        /// The second triangle.
-        second: usize,
-        /// Wound opposite ways.
-        opposite: bool,
-    },
-    /// An edge not used by exactly two triangles: a hole (1) or a non-manifold edge (3+).
-    #[error("fragment {fragment}: edge {a} – {b} is used by {uses} triangles, not 2")]
-    EdgeUses {
-        /// The fragment.
-        fragment: usize,
-        /// One end of the edge.
-        a: DVec3,
-        /// The other end.
-        b: DVec3,
-        /// Triangles using it.
-        uses: usize,
-    },
-    /// An edge whose two triangles walk it the same way (inconsistent winding).
-    #[error("fragment {fragment}: edge {a} – {b} is walked the same way by both its triangles")]
-    Winding {
-        /// The fragment.
-        fragment: usize,
-        /// One end of the edge.
-        a: DVec3,
-        /// The other end.
-        b: DVec3,
-    },
-    /// A fragment volume that is not positive, or that disagrees with its mesh's volume
-    /// (an inward or broken mesh).
-    #[error("fragment {fragment}: volume {volume:e}, its mesh encloses {mesh:e}")]
-    Volume {
-        /// The fragment.
-        fragment: usize,
-        /// Its `volume` field.
-        volume: f64,
-        /// The signed volume its mesh encloses.
-        mesh: f64,
-    },
-    /// `convex_hulls` is neither empty nor one list per convex piece, or a hull triangle
-    /// names a point its piece does not have.
-    #[error("fragment {fragment}: convex piece {piece}'s hull {reason}")]
-    ConvexHull {
-        /// The fragment.
-        fragment: usize,
-        /// The convex piece (the number of pieces when the lists do not match them).
-        piece: usize,
-        /// What is wrong.
-        reason: &'static str,
-    },
-    /// The fragments' volumes do not add up to the expected volume.
-    #[error("the fragments' volumes add up to {total:e}, not {expected:e} (relative error {:e})", (total - expected).abs() / expected.abs())]
-    TotalVolume {
-        /// Sum of the fragments' volumes.
-        total: f64,
-        /// The mesh's volume.
-        expected: f64,
-    },
-    /// A bond out of order, out of range, repeated, or with a bad area, normal or
-    /// centroid.
-    #[error("bond {bond} ({a}–{b}): {reason}")]
-    Bond {
-        /// The bond.
-        bond: usize,
-        /// Its first fragment.
-        a: u32,
-        /// Its second fragment.
-        b: u32,
-        /// What is wrong.
-        reason: &'static str,
-    },
-}
 
 /// A directed edge use: welded ends, walked from `lo` to `hi` or back.
 type EdgeKey = (u32, u32);

@@ -7,6 +7,7 @@ use rayon::prelude::*;
 
 use super::attributes::{Source, attach};
 use super::bonds::merge::merge_small_with;
+use super::error::FractureError;
 use super::kernel::convex::{MAX_PIECES, convex_pieces, decomposed_with_hulls, fine_pieces};
 use super::kernel::inherit::{Part, inherited_pieces};
 use super::kernel::{Piece, Plane, is_surface, mesh_scale};
@@ -15,7 +16,7 @@ use super::methods::slice::{random_planes, slice};
 use super::methods::tetra::{SLIVER_VOLUME_FRACTION, TetraOptions, tetra};
 use super::methods::voronoi::{Cells, delaunay_neighbours, voronoi_cells};
 use super::normalize::{Frame, check_cancellation, check_volume_sum};
-use super::params::{FractureError, FractureParams, Method, Pattern, Seeds};
+use super::params::{FractureParams, Method, Pattern, Seeds};
 use super::seeds::patterns::{seeds, splinter_weights};
 use super::types::{Bond, Fracture, Fragment};
 use super::validate::validated_piece;

@@ -28,7 +28,7 @@
 use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 
-use super::params::FractureError;
+use super::error::FractureError;
 use super::types::{Bond, Fracture, Fragment};
 use crate::TriMesh;
 use crate::util::bounds;

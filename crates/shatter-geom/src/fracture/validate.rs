@@ -1,8 +1,8 @@
 //! Validation of the input mesh before fracture ([`TriMesh::validate_solid`] on the
 //! welded mesh); an inward mesh — the one unambiguous repair — is flipped.
 
+use super::error::FractureError;
 use super::kernel::Piece;
-use super::params::FractureError;
 use crate::TriMesh;
 use crate::mesh::MeshError;
 

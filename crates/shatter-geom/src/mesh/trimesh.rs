@@ -75,7 +75,7 @@ impl TriMesh {
         self.solid = SolidMark(Some(self.fingerprint()));
     }
 
-    /// Whether the fracture made this mesh as it is now (see [`SolidMark`]): `false` for
+    /// Whether the fracture made this mesh as it is now (see `SolidMark`): `false` for
     /// any mesh built or read elsewhere, and for a fragment changed since.
     ///
     /// ```

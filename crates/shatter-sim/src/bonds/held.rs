@@ -13,9 +13,9 @@ use std::collections::BTreeMap;
 
 use rapier3d::prelude::*;
 
-use crate::bonds::live::LiveObject;
 use crate::bonds::tags::{Kind, untag};
-use crate::object::BondModel;
+use crate::breaking::BondState;
+use crate::object::Prepared;
 
 /// Bonds between two fragments (at most) that keep their contacts off: a brick's edge
 /// neighbours are two bonds away, its corner neighbours three.
@@ -39,58 +39,58 @@ impl Held {
             .get(a as usize)
             .is_some_and(|near| near.binary_search(&b).is_ok())
     }
-}
 
-/// Finds again, when a bond broke since, which fragments of `live` hold each other.
-pub(crate) fn update(live: &mut LiveObject) {
-    if live.model != BondModel::Joints || live.held.version == live.bonds.version {
-        return;
-    }
-    let prepared = &live.prepared;
-    let bonds = &prepared.fracture.bonds;
-    let n = prepared.fracture.fragments.len();
-    let mut near = vec![Vec::new(); n];
-    // Breadth-first from each fragment over intact bonds, `HELD_HOPS` deep; `seen[g]`
-    // holds the last start that reached `g`.
-    let mut seen = vec![u32::MAX; n];
-    let mut frontier = Vec::new();
-    let mut next = Vec::new();
-    for (start, list) in near.iter_mut().enumerate() {
-        seen[start] = start as u32;
-        frontier.clear();
-        frontier.push(start as u32);
-        for _ in 0..HELD_HOPS {
-            next.clear();
-            for &f in &frontier {
-                for &b in &prepared.adjacency[f as usize] {
-                    if live.bonds.broken[b as usize] {
-                        continue;
-                    }
-                    let bond = &bonds[b as usize];
-                    let g = if bond.a == f { bond.b } else { bond.a };
-                    if seen[g as usize] != start as u32 {
-                        seen[g as usize] = start as u32;
-                        list.push(g);
-                        next.push(g);
+    /// Finds again, when a bond broke since (`state.version`), which fragments of the
+    /// object `prepared` hold each other.
+    pub fn update(&mut self, prepared: &Prepared, state: &BondState) {
+        if self.version == state.version {
+            return;
+        }
+        let bonds = &prepared.fracture.bonds;
+        let n = prepared.fracture.fragments.len();
+        let mut near = vec![Vec::new(); n];
+        // Breadth-first from each fragment over intact bonds, `HELD_HOPS` deep; `seen[g]`
+        // holds the last start that reached `g`.
+        let mut seen = vec![u32::MAX; n];
+        let mut frontier = Vec::new();
+        let mut next = Vec::new();
+        for (start, list) in near.iter_mut().enumerate() {
+            seen[start] = start as u32;
+            frontier.clear();
+            frontier.push(start as u32);
+            for _ in 0..HELD_HOPS {
+                next.clear();
+                for &f in &frontier {
+                    for &b in &prepared.adjacency[f as usize] {
+                        if state.broken[b as usize] {
+                            continue;
+                        }
+                        let bond = &bonds[b as usize];
+                        let g = if bond.a == f { bond.b } else { bond.a };
+                        if seen[g as usize] != start as u32 {
+                            seen[g as usize] = start as u32;
+                            list.push(g);
+                            next.push(g);
+                        }
                     }
                 }
+                std::mem::swap(&mut frontier, &mut next);
             }
-            std::mem::swap(&mut frontier, &mut next);
+            list.sort_unstable();
         }
-        list.sort_unstable();
+        *self = Held {
+            version: state.version,
+            near,
+        };
     }
-    live.held = Held {
-        version: live.bonds.version,
-        near,
-    };
 }
 
 /// Rapier's contact filter over the world's live objects: no contacts between two
 /// fragments of one joints-model object that it holds ([`Held::holds`]). Only colliders
 /// with [`ActiveHooks::FILTER_CONTACT_PAIRS`] (the joints model's) are asked.
 pub(crate) struct HeldContacts<'a> {
-    /// The live objects by id.
-    pub objects: BTreeMap<u32, &'a LiveObject>,
+    /// The joints-model objects' held sets, by object id.
+    pub objects: BTreeMap<u32, &'a Held>,
 }
 
 impl HeldContacts<'_> {
@@ -101,11 +101,7 @@ impl HeldContacts<'_> {
         else {
             return false;
         };
-        o1 == o2
-            && self
-                .objects
-                .get(&o1)
-                .is_some_and(|live| live.held.holds(f1, f2))
+        o1 == o2 && self.objects.get(&o1).is_some_and(|held| held.holds(f1, f2))
     }
 }
 

@@ -9,7 +9,7 @@ use glam::{Quat, Vec3};
 use rapier3d::prelude::*;
 
 use crate::bonds::clusters::{self, Loads};
-use crate::bonds::held::{self, HeldContacts};
+use crate::bonds::held::HeldContacts;
 use crate::bonds::live::LiveObject;
 use crate::bonds::tags::{Kind, tag, untag};
 use crate::bonds::{joints, split};
@@ -130,8 +130,10 @@ impl World {
         }
         let hits = HitCollector::default();
         for record in self.objects.values_mut() {
-            if let Some(live) = record.live.as_mut() {
-                held::update(live);
+            if let Some(live) = record.live.as_mut()
+                && live.model == BondModel::Joints
+            {
+                live.held.update(&live.prepared, &live.bonds);
             }
         }
         let filter = HeldContacts {
@@ -140,6 +142,7 @@ impl World {
                 .iter()
                 .filter_map(|(id, r)| r.live.as_ref().map(|live| (id.0, live)))
                 .filter(|(_, live)| live.model == BondModel::Joints)
+                .map(|(id, live)| (id, &live.held))
                 .collect(),
         };
         self.physics.step_with_events(&filter, &hits);

@@ -28,7 +28,7 @@ use glam::DVec2;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use super::params::FractureError;
+use super::error::FractureError;
 use super::types::{Fracture, Fragment};
 use crate::mesh::mass_properties;
 use apply::{Cap, UvSource, rebuild, sound};
