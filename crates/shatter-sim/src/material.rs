@@ -73,9 +73,9 @@ pub struct Material {
     pub tension: f32,
     /// Shear strength (Pa).
     pub shear: f32,
-    /// Damage: a hit that loads a bond with a fraction `x < 1` of its break force lowers
-    /// the bond's health (1 when new) by `wear · x`; at health ≤ 0 it breaks. 0 turns
-    /// damage off.
+    /// Damage: a hit that loads a bond with a fraction `x < 1` of its break force, at
+    /// least the endurance limit ([`crate::breaking::ENDURANCE`]), lowers the bond's
+    /// health (1 when new) by `wear · x`; at health ≤ 0 it breaks. 0 turns damage off.
     pub wear: f32,
     /// Rough cut faces: fractal noise on the interior faces of precomputed Voronoi,
     /// tetra and slice fractures, in world units (stone and concrete by default; glass,

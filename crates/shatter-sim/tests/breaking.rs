@@ -87,6 +87,31 @@ fn hits_below_the_strength_wear_a_bond_out() {
 }
 
 #[test]
+fn loads_under_the_endurance_limit_never_wear_a_bond() {
+    use shatter_sim::breaking::ENDURANCE;
+    let (f, adjacency, masses) = row(2);
+    let graph = Graph {
+        bonds: &f.bonds,
+        adjacency: &adjacency,
+        masses: &masses,
+    };
+    let mut state = BondState::new(1, 100.0, 0.5);
+    // A steady load just under the limit (an object resting on the ground), step after
+    // step: no wear at all.
+    let mut loads = Loads::default();
+    loads.add_bond(0, 100.0 * ENDURANCE * 0.99);
+    for _ in 0..10_000 {
+        assert!(state.apply(&graph, &loads).is_empty());
+    }
+    assert_eq!(state.health[0], 1.0);
+    // At the limit it wears, by wear × x.
+    let mut loads = Loads::default();
+    loads.add_bond(0, 100.0 * ENDURANCE);
+    assert!(state.apply(&graph, &loads).is_empty());
+    assert!((state.health[0] - (1.0 - 0.5 * ENDURANCE)).abs() < 1e-6);
+}
+
+#[test]
 fn without_wear_sub_threshold_hits_never_break() {
     let (f, adjacency, masses) = row(2);
     let graph = Graph {

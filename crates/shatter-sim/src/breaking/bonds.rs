@@ -59,6 +59,12 @@ impl Graph<'_> {
     }
 }
 
+/// The endurance limit: a load under this fraction of the break force wears a bond
+/// not at all, however often it comes. Without it, the steady contact of an object
+/// resting on the ground (a few percent of the break force, every step) wore its bonds
+/// out within seconds.
+pub const ENDURANCE: f32 = 0.2;
+
 /// Per bond, broken or not and its health, with the object's break force and wear.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BondState {
@@ -131,9 +137,10 @@ impl BondState {
     }
 
     /// The break rule: breaks the bonds whose load exceeds the strength (cause: impact)
-    /// and wears the others down: a load `x·strength` with `x < 1` takes `wear·x` of the
-    /// bond's health, and a bond whose health reaches 0 breaks (cause: damage). Returns
-    /// the bonds that broke, in bond order.
+    /// and wears the others down: a load `x·strength` with [`ENDURANCE`] `≤ x < 1` takes
+    /// `wear·x` of the bond's health, and a bond whose health reaches 0 breaks (cause:
+    /// damage). Loads under the endurance limit (an object resting on the ground,
+    /// settling after it lands) wear nothing. Returns the bonds that broke, in bond order.
     pub fn apply(&mut self, graph: &Graph<'_>, loads: &Loads) -> Vec<BondBroken> {
         let mut out = Vec::new();
         for (&b, &load) in &loads.bonds {
@@ -144,7 +151,11 @@ impl BondState {
             let cause = if load > self.strength {
                 BreakCause::Impact
             } else {
-                self.health[i] -= self.wear * (load / self.strength).max(0.0);
+                let x = load / self.strength;
+                if x.is_nan() || x < ENDURANCE {
+                    continue;
+                }
+                self.health[i] -= self.wear * x;
                 if self.health[i] > 0.0 {
                     continue;
                 }

@@ -32,8 +32,8 @@ mod events;
 mod islands;
 
 pub use bonds::{
-    BondState, EVENT_THRESHOLD_FRACTION, Graph, LOAD_ATTENUATION, LOAD_DEPTH, Loads, contact_share,
-    explosion_load, weight_relief,
+    BondState, ENDURANCE, EVENT_THRESHOLD_FRACTION, Graph, LOAD_ATTENUATION, LOAD_DEPTH, Loads,
+    contact_share, explosion_load, weight_relief,
 };
 pub use events::{BondBroken, BreakCause, BreakEvent, Split};
 pub use islands::{components, inherited_velocity, launch_velocity, part_centre};

@@ -24,15 +24,15 @@ pub(crate) const MAX_PIECES: usize = 16;
 const FINE_MAX_PIECES: usize = 64;
 
 /// The most a concave fragment's own hull may hold, over its volume, to be its one
-/// convex piece (a dent of a few percent is not worth a decomposition: the hull is what
-/// a decomposition's pieces would hold anyway, within its tolerance).
+/// convex piece in a runtime cut ([`super::inherit`]: a dent of a few percent is not
+/// worth the time there). A precomputed fracture decomposes such a fragment all the
+/// same: on the bird resting on the ground, hulls of its concave cells made it rock
+/// without end and wear its bonds out.
 pub(crate) const ONE_PIECE: f64 = 1.05;
 
 /// Convex pieces of a closed fragment (each with a non-degenerate volume). A fragment
 /// with no edge concave beyond the tolerance is one piece: for a connected, embedded
-/// closed surface, convex edges everywhere mean a convex solid. A concave fragment whose
-/// hull holds at most [`ONE_PIECE`] of it is one piece too, its hull's corners (as a
-/// fragment cut at runtime takes it, see [`super::inherit`]); any other is decomposed.
+/// closed surface, convex edges everywhere mean a convex solid. Any other is decomposed.
 pub(crate) fn convex_pieces(piece: &Piece) -> Vec<Vec<DVec3>> {
     let total = piece.volume();
     let tol = CONVEX_TOL * super::mesh_scale(piece);
@@ -43,11 +43,6 @@ pub(crate) fn convex_pieces(piece: &Piece) -> Vec<Vec<DVec3>> {
     };
     if first.1.is_none() {
         return vec![piece.pos.clone()];
-    }
-    if let Some(hull) = Polytope::hull(&piece.pos)
-        && hull.volume() <= ONE_PIECE * total
-    {
-        return vec![hull.to_mesh().0];
     }
     let mut parts = Vec::new();
     decompose_into(piece, first, tol, MAX_PIECES, &mut parts);
