@@ -7,11 +7,11 @@
 //! warm-up; mean, min and max are reported.
 
 use serde::Serialize;
-use shatter_geom::DVec3;
 use shatter_geom::budget::{Estimate, format_count};
 use shatter_geom::fracture::{Method, Pattern, Placement};
 use shatter_geom::model::{Material, Model};
 use shatter_geom::shapes::Shape;
+use shatter_geom::{DVec3, TriMesh};
 
 use crate::bar::Bar;
 use crate::context::Context;
@@ -238,30 +238,26 @@ pub fn paint(model: &mut Model) {
             normal[i as usize] += n;
         }
     }
-    let uv = |p: DVec3| {
-        let d = (p - centre).normalize_or_zero();
+    // One value per corner, from its vertex.
+    fn per_vertex<T: Copy>(mesh: &TriMesh, f: impl Fn(usize) -> T) -> Vec<[T; 3]> {
+        mesh.triangles
+            .iter()
+            .map(|t| t.map(|i| f(i as usize)))
+            .collect()
+    }
+    let uv = per_vertex(mesh, |i| {
+        let d = (mesh.positions[i] - centre).normalize_or_zero();
         let u = 0.5 + d.z.atan2(d.x) / std::f64::consts::TAU;
         let v = 0.5 - d.y.clamp(-1.0, 1.0).asin() / std::f64::consts::PI;
         [u as f32, v as f32]
-    };
-    let corners = |f: &dyn Fn(u32) -> [f32; 4]| -> Vec<[[f32; 4]; 3]> {
-        mesh.triangles.iter().map(|t| t.map(f)).collect()
-    };
-    let color = corners(&|i| {
-        let q = (mesh.positions[i as usize] - lo) / size;
-        [q.x as f32, q.y as f32, q.z as f32, 1.0]
     });
-    let n = corners(&|i| {
-        let n = normal[i as usize].normalize_or_zero();
-        [n.x as f32, n.y as f32, n.z as f32, 0.0]
+    let smooth = per_vertex(mesh, |i| normal[i].normalize_or_zero().as_vec3().to_array());
+    let color = per_vertex(mesh, |i| {
+        let q = ((mesh.positions[i] - lo) / size).as_vec3();
+        [q.x, q.y, q.z, 1.0]
     });
-    model.corners.uv = Some(
-        mesh.triangles
-            .iter()
-            .map(|t| t.map(|i| uv(mesh.positions[i as usize])))
-            .collect(),
-    );
-    model.corners.normal = Some(n.iter().map(|t| t.map(|c| [c[0], c[1], c[2]])).collect());
+    model.corners.uv = Some(uv);
+    model.corners.normal = Some(smooth);
     model.corners.color = Some(color);
     model.material = mesh
         .triangles

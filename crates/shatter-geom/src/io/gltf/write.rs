@@ -15,6 +15,7 @@ use serde_json::{Value, json};
 use crate::io::export::ExportMaterials;
 use crate::io::{ExportObject, MeshIoError};
 use crate::model::{Image, Material};
+use crate::util::FastMap;
 
 const FLOAT: u32 = 5126;
 const UNSIGNED_INT: u32 = 5125;
@@ -200,13 +201,9 @@ impl GlbBuilder {
         let color = corners.and_then(|c| c.color.as_ref());
         let mut primitives = Vec::new();
         for (m, tris) in by_material {
-            // NORMAL only when the object has normals: without it a client computes
-            // flat normals itself (glTF 2.0, "Meshes"), and a vertex then needs no copy
-            // per face, so the faces stay joined when imported.
-            let with_normals = normal.is_some();
-            // One vertex per distinct position and attributes (bits; -0 is 0).
-            let bits = |v: &[f32]| v.iter().map(|x| (x + 0.0).to_bits()).collect::<Vec<_>>();
-            let mut index: HashMap<Vec<u32>, u32> = HashMap::with_capacity(3 * tris.len());
+            // One vertex per distinct position and attributes: the key is their bits,
+            // zero where the object lacks an attribute (-0 is 0).
+            let mut index: FastMap<[u32; 12], u32> = FastMap::default();
             let mut positions = Vec::with_capacity(3 * tris.len());
             let mut normals = Vec::new();
             let mut uvs = Vec::new();
@@ -218,10 +215,12 @@ impl GlbBuilder {
                     let n = normal.map(|n| n[t][k]);
                     let u = uv.map(|u| u[t][k]);
                     let c = color.map(|c| c[t][k]);
-                    let mut key = bits(&p);
-                    key.extend(bits(n.as_ref().map_or(&[][..], |n| &n[..])));
-                    key.extend(bits(u.as_ref().map_or(&[][..], |u| &u[..])));
-                    key.extend(bits(c.as_ref().map_or(&[][..], |c| &c[..])));
+                    let mut key = [0u32; 12];
+                    let values = p.iter().chain(n.iter().flatten());
+                    let values = values.chain(u.iter().flatten()).chain(c.iter().flatten());
+                    for (slot, x) in key.iter_mut().zip(values) {
+                        *slot = (x + 0.0).to_bits();
+                    }
                     let next = positions.len() as u32;
                     let i = *index.entry(key).or_insert(next);
                     if i == next {
@@ -236,7 +235,10 @@ impl GlbBuilder {
             let mut attributes = json!({
                 "POSITION": self.push_floats(&positions, true, true),
             });
-            if with_normals {
+            // NORMAL only when the object has normals: without it a client computes
+            // flat normals itself (glTF 2.0, "Meshes"), and a vertex then needs no copy
+            // per face, so the faces stay joined when imported.
+            if !normals.is_empty() {
                 attributes["NORMAL"] = json!(self.push_floats(&normals, true, false));
             }
             if !uvs.is_empty() {
