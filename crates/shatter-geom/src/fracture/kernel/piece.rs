@@ -6,7 +6,7 @@ use glam::DVec3;
 use super::Face;
 use super::edges::for_each_edge;
 use crate::TriMesh;
-use crate::mesh::position_key;
+use crate::mesh::{is_degenerate, position_key};
 use crate::util::{FastMap, UnionFind};
 
 /// Bit set in the tag of a triangle on the original surface (not created by a cut); the
@@ -135,6 +135,90 @@ impl Piece {
             self.tris = tris;
             self.tags = tags;
             self.compact();
+        }
+    }
+
+    /// Removes each triangle whose corners are exactly collinear (a corner lying on the
+    /// opposite edge, which rounding in a cut can leave) by splitting the neighbour
+    /// across that edge at the corner: the flat triangle's two short edges then meet
+    /// the split neighbour's halves, so a closed piece stays closed. Left as it was
+    /// when that does not give a closed piece.
+    pub fn split_flat_triangles(&mut self) {
+        for _ in 0..4 {
+            let flat: Vec<usize> = (0..self.tris.len())
+                .filter(|&t| {
+                    let [a, b, c] = self.tris[t].map(|i| self.pos[i as usize]);
+                    is_degenerate(a, b, c)
+                })
+                .collect();
+            if flat.is_empty() {
+                return;
+            }
+            let mut across: FastMap<(u32, u32), usize> = FastMap::default();
+            for (t, tri) in self.tris.iter().enumerate() {
+                for k in 0..3 {
+                    across.insert((tri[k], tri[(k + 1) % 3]), t);
+                }
+            }
+            let mut gone = vec![false; self.tris.len()];
+            let mut added: Vec<([u32; 3], u64)> = Vec::new();
+            for t in flat {
+                if gone[t] {
+                    continue;
+                }
+                let tri = self.tris[t];
+                let p = tri.map(|i| self.pos[i as usize]);
+                // The long edge a -> b, with the middle corner m on it.
+                let k = (0..3)
+                    .max_by(|&i, &j| {
+                        let l = |k: usize| p[k].distance_squared(p[(k + 1) % 3]);
+                        l(i).total_cmp(&l(j))
+                    })
+                    .unwrap_or(0);
+                let (a, b, m) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
+                if [a, b]
+                    .iter()
+                    .any(|&v| self.pos[v as usize] == self.pos[m as usize])
+                {
+                    continue;
+                }
+                let Some(&u) = across.get(&(b, a)) else {
+                    continue;
+                };
+                if gone[u] || u == t {
+                    continue;
+                }
+                let nt = self.tris[u];
+                let r = (0..3)
+                    .find(|&r| nt[r] == b && nt[(r + 1) % 3] == a)
+                    .unwrap_or(0);
+                let d = nt[(r + 2) % 3];
+                gone[t] = true;
+                gone[u] = true;
+                let tag = self.tags[u];
+                added.push(([b, m, d], tag));
+                added.push(([m, a, d], tag));
+            }
+            if added.is_empty() {
+                return;
+            }
+            let mut tris: Vec<[u32; 3]> = Vec::with_capacity(self.tris.len());
+            let mut tags: Vec<u64> = Vec::with_capacity(self.tris.len());
+            for (t, (&tri, &tag)) in self.tris.iter().zip(&self.tags).enumerate() {
+                if !gone[t] {
+                    tris.push(tri);
+                    tags.push(tag);
+                }
+            }
+            for (tri, tag) in added {
+                tris.push(tri);
+                tags.push(tag);
+            }
+            if !closed(&tris) {
+                return;
+            }
+            self.tris = tris;
+            self.tags = tags;
         }
     }
 
@@ -364,4 +448,56 @@ pub(crate) fn mesh_scale(p: &Piece) -> f64 {
     }
     let (lo, hi) = crate::util::bounds(&p.pos);
     (hi - lo).length().max(f64::MIN_POSITIVE)
+}
+
+#[cfg(test)]
+mod flat_tests {
+    use glam::DVec3;
+
+    use super::Piece;
+    use crate::mesh::is_degenerate;
+
+    /// A tetrahedron whose face a-b-c is split at the midpoint m of a-b, the face
+    /// a-d-b across that edge left whole, and the gap closed by the flat triangle
+    /// a-b-m: closed, but with a triangle of no area. Splitting it away leaves a closed
+    /// piece of the same volume, with no flat triangle.
+    #[test]
+    fn a_flat_triangle_is_split_away_and_the_piece_stays_closed() {
+        let (a, b, c, d) = (DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z);
+        let m = (a + b) / 2.0;
+        let mut p = Piece {
+            pos: vec![a, b, c, d, m],
+            // Outward: a-c-b (below), a-b-d (front), a-d-c (side), b-c-d (slant).
+            tris: vec![
+                [0, 2, 4],
+                [4, 2, 1],
+                [0, 1, 3],
+                [0, 3, 2],
+                [1, 2, 3],
+                [0, 4, 1],
+            ],
+            tags: vec![1, 1, 2, 3, 4, 5],
+            faces: Vec::new(),
+        };
+        assert!(p.is_closed());
+        let flat = |p: &Piece| {
+            p.tris
+                .iter()
+                .filter(|t| {
+                    let [x, y, z] = t.map(|i| p.pos[i as usize]);
+                    is_degenerate(x, y, z)
+                })
+                .count()
+        };
+        assert_eq!(flat(&p), 1);
+        let volume = p.volume();
+        p.split_flat_triangles();
+        assert!(p.is_closed());
+        assert_eq!(flat(&p), 0);
+        assert!((p.volume() - volume).abs() < 1e-15);
+        assert!((volume - 1.0 / 6.0).abs() < 1e-15);
+        // The front face a-b-d, split at m, keeps its tag.
+        assert_eq!(p.tags.iter().filter(|&&t| t == 2).count(), 2);
+        assert_eq!(p.tris.len(), 6);
+    }
 }

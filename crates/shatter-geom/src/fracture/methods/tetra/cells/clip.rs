@@ -12,30 +12,69 @@ use crate::util::{FastMap, UnionFind};
 /// does not (a cap the kernel triangulated wrongly, seen on a torus's saddle) makes the
 /// cuts be tried again in the other orders, the first order whose every cut passes kept.
 pub(super) fn clip_cell(mesh: &Piece, planes: Vec<Plane>, eps: f64) -> Vec<Piece> {
-    let finish = |cell: Piece| -> Vec<Piece> {
-        let mut cell = cell;
-        cell.close_faces();
-        with_cavities(
-            cell.components()
-                .into_iter()
-                .flat_map(split_at_pinched_edges)
-                .collect(),
-        )
-    };
-    let good = |parts: &Vec<Piece>| parts.iter().all(Piece::is_closed);
-    let greedy = clip_in_order(mesh, planes.clone(), eps, None).map(finish);
-    if let Some(parts) = greedy.filter(good) {
+    if let Ok(parts) = clip_greedily(mesh, planes.clone(), eps) {
         return parts;
     }
-    for order in permutations(planes.len()) {
-        let parts = clip_in_order(mesh, planes.clone(), eps, Some(&order)).map(finish);
-        if let Some(parts) = parts.filter(good) {
-            return parts;
-        }
+    if let Some(parts) = clip_in_other_orders(mesh, &planes, eps, |_| true) {
+        return parts;
     }
     clip_unchecked(mesh, planes, eps)
         .map(finish)
         .unwrap_or_default()
+}
+
+/// The cell of [`clip_cell`] cut in the greedy order only. Fails when a cut fails the
+/// volume check (`Err(None)`) or a part is not closed (`Err(Some(volume))`, the
+/// volume of the cell as cut).
+pub(super) fn clip_greedily(
+    mesh: &Piece,
+    planes: Vec<Plane>,
+    eps: f64,
+) -> Result<Vec<Piece>, Option<f64>> {
+    let cell = clip_in_order(mesh, planes, eps, None).ok_or(None)?;
+    let volume = cell.volume();
+    let parts = finish(cell);
+    if good(&parts) {
+        Ok(parts)
+    } else {
+        Err(Some(volume))
+    }
+}
+
+/// The cell cut in each order in turn: the first whose cuts pass the volume check,
+/// whose parts are closed and which `accept` takes.
+pub(super) fn clip_in_other_orders(
+    mesh: &Piece,
+    planes: &[Plane],
+    eps: f64,
+    accept: impl Fn(&[Piece]) -> bool,
+) -> Option<Vec<Piece>> {
+    permutations(planes.len()).into_iter().find_map(|order| {
+        clip_in_order(mesh, planes.to_vec(), eps, Some(&order))
+            .map(finish)
+            .filter(|p| good(p) && accept(p))
+    })
+}
+
+/// A cut cell closed, as its connected parts (cavities with the part around them),
+/// without flat triangles ([`Piece::split_flat_triangles`]).
+fn finish(mut cell: Piece) -> Vec<Piece> {
+    cell.close_faces();
+    let mut parts = with_cavities(
+        cell.components()
+            .into_iter()
+            .flat_map(split_at_pinched_edges)
+            .collect(),
+    );
+    for p in &mut parts {
+        p.split_flat_triangles();
+    }
+    parts
+}
+
+/// Whether every part of a cell is closed.
+fn good(parts: &[Piece]) -> bool {
+    parts.iter().all(Piece::is_closed)
 }
 
 /// The cell cut greedily (`order` `None`) or in the given order; `None` when a cut

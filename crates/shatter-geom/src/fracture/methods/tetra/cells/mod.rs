@@ -10,6 +10,7 @@
 
 mod clip;
 mod grid;
+mod local;
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -19,8 +20,8 @@ use crate::fracture::kernel::convex::{TET_FACES, tet_volume};
 use crate::fracture::kernel::{Piece, Plane, SURFACE, is_surface, mesh_scale};
 use crate::fracture::seeds::inside::InsideTester;
 use crate::util::{FastMap, UnionFind};
-use clip::clip_cell;
 use grid::TriangleGrid;
+use local::{Job, clip_cells};
 
 /// Distance (relative to the mesh's size) the surface must keep from a tetrahedron's
 /// faces for it to count as not entering the tetrahedron; nearer, it is clipped.
@@ -146,30 +147,48 @@ pub(super) fn cells(
                     n != NO_NEIGHBOR && side[n as usize] == Side::Inside && !flat[n as usize]
                 }))
     };
+    // The tetrahedra to clip, each from the part of the mesh near it ([`local`]).
+    let to_clip: Vec<usize> = (0..nt)
+        .filter(|&t| side[t] != Side::Outside && !flat[t] && !fast(t))
+        .collect();
+    let jobs: Vec<Job> = to_clip
+        .iter()
+        .map(|&t| {
+            let c = corners(t);
+            Job {
+                lo: c[0].min(c[1]).min(c[2]).min(c[3]),
+                hi: c[0].max(c[1]).max(c[2]).max(c[3]),
+                planes: (0..4).map(|f| face_plane(del, pts, t, f)).collect(),
+            }
+        })
+        .collect();
+    let room = (1e3 * eps).max(1e-9 * mesh_scale(mesh));
+    let mut clipped = clip_cells(mesh, jobs, eps, room).into_iter();
+    let mut next_clipped = to_clip.iter().copied().peekable();
     let per_tet: Vec<Vec<(Piece, bool)>> = (0..nt)
-        .into_par_iter()
-        .with_max_len(1)
         .map(|t| {
+            if next_clipped.peek() == Some(&t) {
+                next_clipped.next();
+                let parts = clipped.next().unwrap_or_default();
+                return parts
+                    .into_iter()
+                    .map(|mut p| {
+                        // A cap on a face of the points' hull has no neighbour: it is the
+                        // fragments' outer surface (inside the mesh when corners are
+                        // skipped).
+                        for tag in &mut p.tags {
+                            if !is_surface(*tag) && is_hull_face(del, *tag) {
+                                *tag = SURFACE;
+                            }
+                        }
+                        (p, false)
+                    })
+                    .collect();
+            }
             if side[t] == Side::Outside || flat[t] {
                 return Vec::new();
             }
-            if fast(t) {
-                return vec![(whole_piece(del, pts, t), true)];
-            }
-            let planes: Vec<Plane> = (0..4).map(|f| face_plane(del, pts, t, f)).collect();
-            clip_cell(mesh, planes, eps)
-                .into_iter()
-                .map(|mut p| {
-                    // A cap on a face of the points' hull has no neighbour: it is the
-                    // fragments' outer surface (inside the mesh when corners are skipped).
-                    for tag in &mut p.tags {
-                        if !is_surface(*tag) && is_hull_face(del, *tag) {
-                            *tag = SURFACE;
-                        }
-                    }
-                    (p, false)
-                })
-                .collect()
+            vec![(whole_piece(del, pts, t), true)]
         })
         .collect();
     let mut out = Cells {
