@@ -63,6 +63,15 @@ pub const TETRA_BYTES_PER_TETRAHEDRON: f64 = 1700.0;
 /// (clipping and union-based merging: about 3e-5 s on the cube with 500 points, 1e-4 s
 /// on the bird, where most tetrahedra touch the surface).
 pub const TETRA_SECONDS_PER_TETRAHEDRON: f64 = 3.0e-5;
+/// Seconds per surface vertex of a tetra fracture on top of
+/// [`TETRA_SECONDS_PER_TETRAHEDRON`] (its tetrahedra clipped to the mesh, its slivers
+/// merged): `shatter fracture FILE --method tetra --random-vertices 20` on 2 cores took
+/// 266 s for the 2-cylinder engine's 87,000 surface vertices (3.1 ms each) and 11–17 s
+/// for the Stanford bunny's 34,834 (0.3–0.5 ms each).
+pub const TETRA_SECONDS_PER_SURFACE_POINT: f64 = 2.0e-3;
+/// Bytes per surface vertex of a tetra fracture on top of
+/// [`TETRA_BYTES_PER_TETRAHEDRON`]: the engine's peaks at about 2.1 GB.
+pub const TETRA_BYTES_PER_SURFACE_POINT: f64 = 12_000.0;
 /// Bytes per Voronoi cell at the peak (its clipped mesh with caps, convex pieces,
 /// bonds): `shatter fracture --shape bird --pieces 1000` and `--pieces 4000` peak at
 /// 11 and 10.5 kB per cell above the process.
@@ -121,14 +130,26 @@ impl Estimate {
     }
 
     /// The tetra fracture of a mesh with `points` Delaunay points (surface vertices kept
-    /// after `skip`, random points, the centre): the tetrahedralization, then a piece
-    /// per tetrahedron (slivers are merged afterwards).
-    pub fn tetra_fracture(points: u64) -> Estimate {
+    /// after `skip`, random points, the centre), `surface` of them surface vertices: the
+    /// tetrahedralization, then a piece per tetrahedron (slivers are merged
+    /// afterwards). The tetrahedra at the surface, about three per surface vertex, are
+    /// clipped to the mesh and mostly merged, and cost far more than the others.
+    ///
+    /// ```
+    /// use shatter_geom::budget::Estimate;
+    /// let inside = Estimate::tetra_fracture(10_000, 100);
+    /// let dense = Estimate::tetra_fracture(10_000, 9_900);
+    /// assert!(dense.seconds > 10.0 * inside.seconds);
+    /// ```
+    pub fn tetra_fracture(points: u64, surface: u64) -> Estimate {
         let tetrahedra = points as f64 * TETRAHEDRA_PER_POINT;
+        let surface = surface.min(points) as f64;
         Estimate::delaunay(points)
             + Estimate {
-                bytes: tetrahedra * TETRA_BYTES_PER_TETRAHEDRON,
-                seconds: tetrahedra * TETRA_SECONDS_PER_TETRAHEDRON,
+                bytes: tetrahedra * TETRA_BYTES_PER_TETRAHEDRON
+                    + surface * TETRA_BYTES_PER_SURFACE_POINT,
+                seconds: tetrahedra * TETRA_SECONDS_PER_TETRAHEDRON
+                    + surface * TETRA_SECONDS_PER_SURFACE_POINT,
             }
     }
 

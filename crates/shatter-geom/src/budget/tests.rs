@@ -52,7 +52,7 @@ fn a_request_is_refused_above_the_usable_share_of_the_memory() {
 fn absurd_counts_are_estimated_without_overflow() {
     for e in [
         Estimate::delaunay(u64::MAX),
-        Estimate::tetra_fracture(u64::MAX),
+        Estimate::tetra_fracture(u64::MAX, u64::MAX),
         Estimate::voronoi_fracture(u64::MAX, u64::MAX),
         Estimate::slice_fracture(u64::MAX, 10),
     ] {
@@ -90,7 +90,8 @@ fn estimates_grow_with_the_request() {
         Estimate::voronoi_fracture(1000, 1000),
     );
     assert!(big.bytes > small.bytes && big.seconds > small.seconds);
-    assert!(Estimate::tetra_fracture(100).bytes > Estimate::delaunay(100).bytes);
+    assert!(Estimate::tetra_fracture(100, 0).bytes > Estimate::delaunay(100).bytes);
+    assert!(Estimate::tetra_fracture(100, 100).seconds > Estimate::tetra_fracture(100, 0).seconds);
     assert_eq!(slice_pieces_at_most(0), 1.0);
     assert_eq!(slice_pieces_at_most(1), 2.0);
     assert_eq!(slice_pieces_at_most(3), 8.0);

@@ -110,7 +110,7 @@ pub fn fracture_estimate(mesh: &TriMesh, config: &FractureConfig) -> (String, Es
                     "--random-vertices {random_vertices}: a tetra fracture of {} points",
                     format_count(points)
                 ),
-                Estimate::tetra_fracture(points).with_process(),
+                Estimate::tetra_fracture(points, surface).with_process(),
             )
         }
         Method::Voronoi { seeds } => {

@@ -160,9 +160,8 @@ pub fn object_estimate(key: &str, spec: &ObjectSpec, world_model: BondModel) -> 
             )
         }
         MethodKind::Tetra => {
-            let points = vertices.div_ceil(u64::from(params.skip) + 1)
-                + u64::from(params.random_vertices)
-                + u64::from(params.center);
+            let surface = vertices.div_ceil(u64::from(params.skip) + 1);
+            let points = surface + u64::from(params.random_vertices) + u64::from(params.center);
             (
                 format!(
                     "{key}.random_vertices = {}: a tetra fracture of {} points",
@@ -170,7 +169,7 @@ pub fn object_estimate(key: &str, spec: &ObjectSpec, world_model: BondModel) -> 
                     format_count(points)
                 ),
                 fragments_at_most(points as f64 * shatter_geom::budget::TETRAHEDRA_PER_POINT),
-                Estimate::tetra_fracture(points),
+                Estimate::tetra_fracture(points, surface),
             )
         }
         MethodKind::Voronoi => (

@@ -4,7 +4,6 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use glam::DVec3;
-use rayon::prelude::*;
 
 use crate::fracture::Bond;
 use crate::fracture::kernel::Piece;
@@ -51,15 +50,7 @@ pub(crate) fn merge_small_with(
     }
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&a, &b| vol[a].total_cmp(&vol[b]).then(a.cmp(&b)));
-    // The groups are planned first, as if every union closed, and each is made by one
-    // union of all its pieces, the groups in parallel. Joined one piece at a time, a
-    // group of m pieces costs m unions of a growing surface: on a dense mesh, where
-    // nearly every tetrahedron is a sliver, that was most of the time. A planned group
-    // whose union does not close is left in pieces, which the loop below then joins one
-    // at a time, as before.
-    let planned = plan(&order, &vol, &bonds, is_small);
     let mut groups = Groups::new(pieces, vol, &bonds);
-    groups.make(planned, &bonds, eps);
     let small = |g: usize, groups: &Groups| is_small(g, groups.vol[g], groups.count[g]);
     loop {
         let mut changed = false;
@@ -166,74 +157,6 @@ pub(crate) fn merge_small_with(
     (out, bonds, merged, new_id)
 }
 
-/// The groups [`merge_small_with`] would make if every union closed: each small group
-/// (smallest first, repeatedly) joined to the bonded group it shares the most area
-/// with. Groups of more than one piece, each as its pieces in ascending order.
-fn plan(
-    order: &[usize],
-    vol: &[f64],
-    bonds: &[Bond],
-    is_small: impl Fn(usize, f64, usize) -> bool,
-) -> Vec<Vec<usize>> {
-    let n = vol.len();
-    let mut uf = UnionFind::new(n);
-    let mut gvol = vol.to_vec();
-    let mut count = vec![1usize; n];
-    let mut members: Vec<Vec<usize>> = (0..n).map(|i| vec![i]).collect();
-    let mut incident: Vec<Vec<u32>> = vec![Vec::new(); n];
-    for (k, b) in bonds.iter().enumerate() {
-        incident[b.a as usize].push(k as u32);
-        incident[b.b as usize].push(k as u32);
-    }
-    loop {
-        let mut changed = false;
-        for &i in order {
-            let g = uf.find(i);
-            if !is_small(g, gvol[g], count[g]) {
-                continue;
-            }
-            let mut area_to: BTreeMap<usize, f64> = BTreeMap::new();
-            for &k in members[g].iter().flat_map(|&p| &incident[p]) {
-                let b = &bonds[k as usize];
-                let (ga, gb) = (uf.find(b.a as usize), uf.find(b.b as usize));
-                if ga == gb {
-                    continue;
-                }
-                if ga == g {
-                    *area_to.entry(gb).or_default() += b.area;
-                } else if gb == g {
-                    *area_to.entry(ga).or_default() += b.area;
-                }
-            }
-            let best = area_to
-                .into_iter()
-                .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)));
-            if let Some((h, _)) = best {
-                let (v, c) = (gvol[g] + gvol[h], count[g] + count[h]);
-                uf.union(g, h);
-                let r = uf.find(g);
-                gvol[r] = v;
-                count[r] = c;
-                let other = if r == g { h } else { g };
-                let moved = std::mem::take(&mut members[other]);
-                members[r].extend(moved);
-                changed = true;
-            }
-        }
-        if !changed {
-            break;
-        }
-    }
-    members
-        .into_iter()
-        .filter(|m| m.len() > 1)
-        .map(|mut m| {
-            m.sort_unstable();
-            m
-        })
-        .collect()
-}
-
 /// The groups being merged: each piece's group, and per group (held by its root) its
 /// surface, volume, member count and members; each piece's bonds; the pairs whose union
 /// failed.
@@ -269,42 +192,6 @@ impl Groups {
         }
     }
 
-    /// Makes each planned group (pieces, each still alone) by one union of all its
-    /// pieces, the groups in parallel. A group whose union does not close is halved
-    /// along its bonds and each half made the same way, down to pairs; what is left
-    /// apart, the loop of [`merge_small_with`] joins one group at a time.
-    fn make(&mut self, planned: Vec<Vec<usize>>, bonds: &[Bond], eps: f64) {
-        let (geometry, incident) = (&self.geometry, &self.incident);
-        let made: Vec<(Vec<usize>, Piece)> = planned
-            .into_par_iter()
-            .with_max_len(1)
-            .flat_map_iter(|m| {
-                let mut out = Vec::new();
-                make_group(m, geometry, incident, bonds, eps, &mut out);
-                out
-            })
-            .collect();
-        for (m, joined) in made {
-            let (v, c): (f64, usize) = (m.iter().map(|&i| self.vol[i]).sum(), m.len());
-            for &i in &m[1..] {
-                self.uf.union(m[0], i);
-            }
-            for &i in &m {
-                self.geometry[i] = None;
-            }
-            let r = self.uf.find(m[0]);
-            self.vol[r] = v;
-            self.count[r] = c;
-            self.geometry[r] = Some(joined);
-            for &i in &m {
-                if i != r {
-                    self.members[i].clear();
-                }
-            }
-            self.members[r] = m;
-        }
-    }
-
     /// Joins groups `g` and `h` (roots) when the union of their surfaces is a closed
     /// 2-manifold; a refused pair is remembered and not tried again.
     fn join(&mut self, g: usize, h: usize, eps: f64) -> bool {
@@ -336,87 +223,6 @@ impl Groups {
             }
         }
     }
-}
-
-/// The union of the pieces `m` (bonded, each alone) pushed onto `out` when it closes
-/// and has no flat triangle (the fragment check refuses those);
-/// else `m` in breadth-first order along its bonds is halved (the first half connected,
-/// the second as its connected parts) and each part made the same way.
-fn make_group(
-    m: Vec<usize>,
-    geometry: &[Option<Piece>],
-    incident: &[Vec<u32>],
-    bonds: &[Bond],
-    eps: f64,
-    out: &mut Vec<(Vec<usize>, Piece)>,
-) {
-    if m.len() < 2 {
-        return;
-    }
-    let parts: Vec<&Piece> = m.iter().filter_map(|&i| geometry[i].as_ref()).collect();
-    if parts.len() != m.len() {
-        return;
-    }
-    if let Some(joined) = union_without_flat(&parts, eps) {
-        out.push((m, joined));
-        return;
-    }
-    if m.len() == 2 {
-        return;
-    }
-    let inside: BTreeSet<usize> = m.iter().copied().collect();
-    let neighbours = |i: usize| {
-        incident[i].iter().map(move |&k| {
-            let b = &bonds[k as usize];
-            if b.a as usize == i {
-                b.b as usize
-            } else {
-                b.a as usize
-            }
-        })
-    };
-    // Connected parts of `set`, each in breadth-first order from its lowest piece.
-    let parts_of = |set: &BTreeSet<usize>| -> Vec<Vec<usize>> {
-        let mut seen: BTreeSet<usize> = BTreeSet::new();
-        let mut parts = Vec::new();
-        for &start in set {
-            if !seen.insert(start) {
-                continue;
-            }
-            let mut order = vec![start];
-            let mut k = 0;
-            while k < order.len() {
-                for j in neighbours(order[k]) {
-                    if set.contains(&j) && seen.insert(j) {
-                        order.push(j);
-                    }
-                }
-                k += 1;
-            }
-            parts.push(order);
-        }
-        parts
-    };
-    for part in parts_of(&inside) {
-        if part.len() < m.len() {
-            // Not connected after all: each part on its own.
-            make_group(sorted(part), geometry, incident, bonds, eps, out);
-            continue;
-        }
-        let half = part.len() / 2;
-        let first: Vec<usize> = part[..half].to_vec();
-        let rest: BTreeSet<usize> = part[half..].iter().copied().collect();
-        make_group(sorted(first), geometry, incident, bonds, eps, out);
-        for piece in parts_of(&rest) {
-            make_group(sorted(piece), geometry, incident, bonds, eps, out);
-        }
-    }
-}
-
-/// `v` in ascending order.
-fn sorted(mut v: Vec<usize>) -> Vec<usize> {
-    v.sort_unstable();
-    v
 }
 
 /// The [`union`] of `parts` with its flat triangles split away
