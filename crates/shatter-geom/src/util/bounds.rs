@@ -12,7 +12,16 @@ pub(crate) fn bounds(pos: &[DVec3]) -> (DVec3, DVec3) {
 
 /// The eight corners of the box `lo..hi`: corner `i` takes `hi` along x where bit 0 of
 /// `i` is set, along y where bit 1 is, along z where bit 2 is.
-pub(crate) fn box_corners(lo: DVec3, hi: DVec3) -> Vec<DVec3> {
+///
+/// ```
+/// use shatter_geom::DVec3;
+/// use shatter_geom::util::box_corners;
+/// let c = box_corners(DVec3::ZERO, DVec3::new(1.0, 2.0, 3.0));
+/// assert_eq!(c.len(), 8);
+/// assert_eq!(c[0], DVec3::ZERO);
+/// assert_eq!(c[5], DVec3::new(1.0, 0.0, 3.0));
+/// ```
+pub fn box_corners(lo: DVec3, hi: DVec3) -> Vec<DVec3> {
     (0..8)
         .map(|i| {
             DVec3::new(

@@ -5,6 +5,7 @@ mod bounds;
 mod fast_hash;
 mod union_find;
 
-pub(crate) use bounds::{bounds, box_corners};
+pub(crate) use bounds::bounds;
+pub use bounds::box_corners;
 pub(crate) use fast_hash::{FastMap, FastSet};
 pub use union_find::UnionFind;

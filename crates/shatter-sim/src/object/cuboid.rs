@@ -49,17 +49,7 @@ pub(crate) fn axis_aligned_box(points: &[DVec3], scale: DVec3) -> Option<(Vec3, 
 mod tests {
     use super::*;
 
-    fn corners(lo: DVec3, hi: DVec3) -> Vec<DVec3> {
-        (0..8)
-            .map(|i| {
-                DVec3::new(
-                    if i & 1 == 0 { lo.x } else { hi.x },
-                    if i & 2 == 0 { lo.y } else { hi.y },
-                    if i & 4 == 0 { lo.z } else { hi.z },
-                )
-            })
-            .collect()
-    }
+    use shatter_geom::util::box_corners as corners;
 
     #[test]
     fn a_brick_s_corners_are_a_box_at_scale() {

@@ -8,7 +8,6 @@ use glam::DVec3;
 use crate::fracture::Bond;
 use crate::fracture::kernel::Piece;
 use crate::fracture::kernel::union::union;
-use crate::mesh::is_degenerate;
 use crate::util::{FastMap, UnionFind};
 
 /// What merging did beyond the plain case.
@@ -231,11 +230,7 @@ impl Groups {
 fn union_without_flat(parts: &[&Piece], eps: f64) -> Option<Piece> {
     let mut joined = union(parts, eps).ok()?;
     joined.split_flat_triangles();
-    let flat = joined.tris.iter().any(|t| {
-        let [a, b, c] = t.map(|i| joined.pos[i as usize]);
-        is_degenerate(a, b, c)
-    });
-    (!flat).then_some(joined)
+    (!joined.has_flat_triangle()).then_some(joined)
 }
 
 /// The vertices of a set of pieces bucketed on a uniform grid, each with its piece, for

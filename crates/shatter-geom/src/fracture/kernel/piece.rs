@@ -145,12 +145,7 @@ impl Piece {
     /// when that does not give a closed piece.
     pub fn split_flat_triangles(&mut self) {
         for _ in 0..4 {
-            let flat: Vec<usize> = (0..self.tris.len())
-                .filter(|&t| {
-                    let [a, b, c] = self.tris[t].map(|i| self.pos[i as usize]);
-                    is_degenerate(a, b, c)
-                })
-                .collect();
+            let flat = self.flat_triangles();
             if flat.is_empty() {
                 return;
             }
@@ -220,6 +215,22 @@ impl Piece {
             self.tris = tris;
             self.tags = tags;
         }
+    }
+
+    /// Whether a triangle's corners are exactly collinear (see
+    /// [`Piece::split_flat_triangles`]); the fragment check refuses those.
+    pub fn has_flat_triangle(&self) -> bool {
+        !self.flat_triangles().is_empty()
+    }
+
+    /// The triangles whose corners are exactly collinear, in order.
+    fn flat_triangles(&self) -> Vec<usize> {
+        (0..self.tris.len())
+            .filter(|&t| {
+                let [a, b, c] = self.tris[t].map(|i| self.pos[i as usize]);
+                is_degenerate(a, b, c)
+            })
+            .collect()
     }
 
     /// Every directed edge once, with its reverse once: closed, and a 2-manifold by

@@ -43,12 +43,6 @@ pub(super) struct Job {
 /// mesh, up to rounding and the order of the cuts). `eps` is the cuts' on-plane tolerance;
 /// a tetrahedron is placed in a box only with `room` (well above `eps`) to each side.
 pub(super) fn clip_cells(mesh: &Piece, jobs: Vec<Job>, eps: f64, room: f64) -> Vec<Vec<Piece>> {
-    let n = jobs.len();
-    let (lo, hi) = crate::util::bounds(&mesh.pos);
-    let node = Node {
-        lo: lo - DVec3::splat(room),
-        hi: hi + DVec3::splat(room),
-    };
     if mesh.tris.len() <= LEAF_TRIANGLES {
         // Small enough to clip each cell from it all.
         return jobs
@@ -57,20 +51,25 @@ pub(super) fn clip_cells(mesh: &Piece, jobs: Vec<Job>, eps: f64, room: f64) -> V
             .map(|j| clip_cell(mesh, j.planes, eps))
             .collect();
     }
-    let planes: Vec<Vec<Plane>> = jobs.iter().map(|j| j.planes.clone()).collect();
-    let mut done: Vec<(usize, Option<Vec<Piece>>)> = Vec::with_capacity(n);
+    let n = jobs.len();
+    let (lo, hi) = crate::util::bounds(&mesh.pos);
+    let node = Node {
+        lo: lo - DVec3::splat(room),
+        hi: hi + DVec3::splat(room),
+    };
+    let mut done: Vec<(usize, Cell)> = Vec::with_capacity(n);
     let indexed: Vec<(usize, Job)> = jobs.into_iter().enumerate().collect();
     descend(mesh, node, indexed, eps, room, 0, &mut done);
-    let mut out: Vec<Option<Vec<Piece>>> = vec![None; n];
-    for (k, parts) in done {
-        out[k] = parts;
-    }
-    out.into_par_iter()
-        .zip(planes)
+    done.sort_unstable_by_key(|(k, _)| *k);
+    done.into_par_iter()
         .with_max_len(1)
-        .map(|(parts, planes)| parts.unwrap_or_else(|| clip_cell(mesh, planes, eps)))
+        .map(|(_, cell)| cell.unwrap_or_else(|planes| clip_cell(mesh, planes, eps)))
         .collect()
 }
+
+/// A cell clipped from a node's piece, or its planes back, to clip it from the whole
+/// mesh ([`clip_one`]).
+type Cell = Result<Vec<Piece>, Vec<Plane>>;
 
 /// A node's box.
 #[derive(Clone, Copy)]
@@ -88,13 +87,13 @@ fn descend(
     eps: f64,
     room: f64,
     depth: usize,
-    done: &mut Vec<(usize, Option<Vec<Piece>>)>,
+    done: &mut Vec<(usize, Cell)>,
 ) {
     if jobs.is_empty() {
         return;
     }
-    let here = |jobs: Vec<(usize, Job)>, done: &mut Vec<(usize, Option<Vec<Piece>>)>| {
-        let cells: Vec<(usize, Option<Vec<Piece>>)> = jobs
+    let here = |jobs: Vec<(usize, Job)>, done: &mut Vec<(usize, Cell)>| {
+        let cells: Vec<(usize, Cell)> = jobs
             .into_par_iter()
             .with_max_len(1)
             .map(|(k, job)| (k, clip_one(piece, job, eps)))
@@ -103,7 +102,7 @@ fn descend(
     };
     if piece.is_empty() {
         // The box holds no part of the mesh: every tetrahedron in it has no cell.
-        done.extend(jobs.into_iter().map(|(k, _)| (k, Some(Vec::new()))));
+        done.extend(jobs.into_iter().map(|(k, _)| (k, Ok(Vec::new()))));
         return;
     }
     if depth >= MAX_DEPTH
@@ -142,26 +141,26 @@ fn descend(
     }
     let mut unit = DVec3::ZERO;
     unit[axis] = 1.0;
+    // Each child's piece is its parent's clipped by the plane at its side of the split.
     let child = |side: usize| -> (Piece, Node) {
-        let (plane, bounds) = if side == 0 {
-            let plane = Plane {
-                n: unit,
-                d: top0,
-                tag: BOX_TAG,
-            };
-            let mut b = node;
-            b.hi[axis] = top0;
-            (plane, b)
+        let (sign, at) = if side == 0 {
+            (1.0, top0)
         } else {
-            let plane = Plane {
-                n: -unit,
-                d: -bottom1,
-                tag: BOX_TAG,
-            };
-            let mut b = node;
-            b.lo[axis] = bottom1;
-            (plane, b)
+            (-1.0, bottom1)
         };
+        let mut n = DVec3::ZERO;
+        n[axis] = sign;
+        let plane = Plane {
+            n,
+            d: sign * at,
+            tag: BOX_TAG,
+        };
+        let mut bounds = node;
+        if side == 0 {
+            bounds.hi[axis] = at;
+        } else {
+            bounds.lo[axis] = at;
+        }
         let mut p = clip_keeping_faces(piece, &plane, eps).unwrap_or_else(|| piece.clone());
         p.compact();
         (p, bounds)
@@ -194,8 +193,8 @@ fn descend(
     done.extend(done1);
 }
 
-/// One tetrahedron's cell from a node's piece; `None` for [`clip_cells`] to clip it
-/// from the whole mesh instead ([`clip_cell`]).
+/// One tetrahedron's cell from a node's piece; its planes back for [`clip_cells`] to
+/// clip it from the whole mesh instead ([`clip_cell`]).
 ///
 /// The greedy order is tried first. When its cell is not closed, the other orders are
 /// tried on the node's piece, but a cell of theirs is taken only if its volume is the
@@ -204,9 +203,9 @@ fn descend(
 /// would no longer add up. A box's cap left by the cuts also sends the cell to the
 /// whole mesh (it cannot be when the tetrahedron lies inside the box, but rounding is
 /// not proved away).
-fn clip_one(piece: &Piece, job: Job, eps: f64) -> Option<Vec<Piece>> {
+fn clip_one(piece: &Piece, job: Job, eps: f64) -> Cell {
     let no_box = |parts: &[Piece]| parts.iter().all(|p| !p.tags.contains(&BOX_TAG));
-    match clip_greedily(piece, job.planes.clone(), eps) {
+    let cell = match clip_greedily(piece, job.planes.clone(), eps) {
         Ok(parts) => no_box(&parts).then_some(parts),
         Err(None) => None,
         Err(Some(volume)) => {
@@ -216,7 +215,8 @@ fn clip_one(piece: &Piece, job: Job, eps: f64) -> Option<Vec<Piece>> {
                 no_box(parts) && (v - volume).abs() <= tol
             })
         }
-    }
+    };
+    cell.ok_or(job.planes)
 }
 
 #[cfg(test)]

@@ -19,7 +19,7 @@ use crate::delaunay::{NO_NEIGHBOR, Tetrahedralization};
 use crate::fracture::kernel::convex::{TET_FACES, tet_volume};
 use crate::fracture::kernel::{Piece, Plane, SURFACE, is_surface, mesh_scale};
 use crate::fracture::seeds::inside::InsideTester;
-use crate::util::{FastMap, UnionFind};
+use crate::util::{FastMap, UnionFind, bounds};
 use grid::TriangleGrid;
 use local::{Job, clip_cells};
 
@@ -154,43 +154,40 @@ pub(super) fn cells(
     let jobs: Vec<Job> = to_clip
         .iter()
         .map(|&t| {
-            let c = corners(t);
+            let (lo, hi) = bounds(&corners(t));
             Job {
-                lo: c[0].min(c[1]).min(c[2]).min(c[3]),
-                hi: c[0].max(c[1]).max(c[2]).max(c[3]),
+                lo,
+                hi,
                 planes: (0..4).map(|f| face_plane(del, pts, t, f)).collect(),
             }
         })
         .collect();
     let room = (1e3 * eps).max(1e-9 * mesh_scale(mesh));
-    let mut clipped = clip_cells(mesh, jobs, eps, room).into_iter();
-    let mut next_clipped = to_clip.iter().copied().peekable();
-    let per_tet: Vec<Vec<(Piece, bool)>> = (0..nt)
+    // The rest are kept whole (inside, with every neighbour inside) or have no cell.
+    let mut per_tet: Vec<Vec<(Piece, bool)>> = (0..nt)
         .map(|t| {
-            if next_clipped.peek() == Some(&t) {
-                next_clipped.next();
-                let parts = clipped.next().unwrap_or_default();
-                return parts
-                    .into_iter()
-                    .map(|mut p| {
-                        // A cap on a face of the points' hull has no neighbour: it is the
-                        // fragments' outer surface (inside the mesh when corners are
-                        // skipped).
-                        for tag in &mut p.tags {
-                            if !is_surface(*tag) && is_hull_face(del, *tag) {
-                                *tag = SURFACE;
-                            }
-                        }
-                        (p, false)
-                    })
-                    .collect();
+            if fast(t) && !flat[t] {
+                vec![(whole_piece(del, pts, t), true)]
+            } else {
+                Vec::new()
             }
-            if side[t] == Side::Outside || flat[t] {
-                return Vec::new();
-            }
-            vec![(whole_piece(del, pts, t), true)]
         })
         .collect();
+    for (&t, parts) in to_clip.iter().zip(clip_cells(mesh, jobs, eps, room)) {
+        per_tet[t] = parts
+            .into_iter()
+            .map(|mut p| {
+                // A cap on a face of the points' hull has no neighbour: it is the
+                // fragments' outer surface (inside the mesh when corners are skipped).
+                for tag in &mut p.tags {
+                    if !is_surface(*tag) && is_hull_face(del, *tag) {
+                        *tag = SURFACE;
+                    }
+                }
+                (p, false)
+            })
+            .collect();
+    }
     let mut out = Cells {
         pieces: Vec::new(),
         tet: Vec::new(),
