@@ -45,7 +45,7 @@ fn thesis_case_cube_with_500_random_points() {
         check_fracture(&cube, 1.0, &fr, 1e-9, &what);
         // (The thesis's points crowd the centre, where many small tetrahedra merge.)
         assert!(fr.fragments.len() > 300, "{what}: {}", fr.fragments.len());
-        // A lone tetrahedron is flat-shaded: 4 triangles, 12 vertices.
+        // A lone tetrahedron: 4 triangles on 4 shared vertices (closed by index).
         let lone = fr
             .fragments
             .iter()
@@ -56,7 +56,7 @@ fn thesis_case_cube_with_500_random_points() {
             "{what}: {lone} lone tetrahedra"
         );
         for f in fr.fragments.iter().filter(|f| f.mesh.triangles.len() == 4) {
-            assert_eq!(f.mesh.positions.len(), 12);
+            assert_eq!(f.mesh.positions.len(), 4);
         }
     }
 }

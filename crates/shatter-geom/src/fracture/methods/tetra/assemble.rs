@@ -1,5 +1,5 @@
 //! The tetra method's fragments from its pieces: slivers merged into neighbours by the
-//! union-based merge, lone tetrahedra flat-shaded as in the thesis.
+//! union-based merge, lone tetrahedra as they are.
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -71,17 +71,13 @@ pub(super) fn assemble(
     (fragments, tags, bonds)
 }
 
-/// A lone whole tetrahedron, flat-shaded: four triangles of three own vertices each;
-/// its collision piece is itself.
+/// A lone whole tetrahedron: four vertices and four triangles, so that its surface is
+/// closed by index as every other fragment's is (the thesis split the vertices per face
+/// for flat shading; here flat normals are per corner, in [`Fragment::corners`], or the
+/// renderer's); its collision piece is itself.
 fn lone_tetrahedron(p: &Piece, c: [DVec3; 4]) -> (Fragment, Vec<u64>) {
-    let mut positions = Vec::with_capacity(12);
-    let mut triangles = Vec::with_capacity(4);
-    for face in TET_FACES {
-        let base = positions.len() as u32;
-        positions.extend(face.map(|i| c[i]));
-        triangles.push([base, base + 1, base + 2]);
-    }
-    let mesh = TriMesh::new(positions, triangles);
+    let triangles = TET_FACES.map(|f| f.map(|i| i as u32)).to_vec();
+    let mesh = TriMesh::new(c.to_vec(), triangles);
     let (volume, centroid, inertia) = mass_properties(&mesh.positions, &mesh.triangles);
     let fragment = Fragment {
         mesh,
