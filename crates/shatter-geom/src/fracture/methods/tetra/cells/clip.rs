@@ -1,6 +1,9 @@
 //! A tetrahedron's cell clipped from the mesh by its face planes, the cut order checked
 //! by volume, and split into its connected parts.
 
+use glam::DVec3;
+
+use super::exact::clip_exactly;
 use crate::fracture::kernel::clip::clip_keeping_faces;
 use crate::fracture::kernel::{Piece, Plane, with_cavities};
 use crate::util::{FastMap, UnionFind};
@@ -11,11 +14,24 @@ use crate::util::{FastMap, UnionFind};
 /// Each cut must keep a volume between zero and what it cut (up to rounding); a cut that
 /// does not (a cap the kernel triangulated wrongly, seen on a torus's saddle) makes the
 /// cuts be tried again in the other orders, the first order whose every cut passes kept.
-pub(super) fn clip_cell(mesh: &Piece, planes: Vec<Plane>, eps: f64) -> Vec<Piece> {
+/// When none closes the cell, it is the exact boolean of the mesh and the tetrahedron
+/// `corners` ([`clip_exactly`]); when that fails too, the greedy cut unchecked.
+pub(super) fn clip_cell(
+    mesh: &Piece,
+    planes: Vec<Plane>,
+    corners: [DVec3; 4],
+    eps: f64,
+) -> Vec<Piece> {
     if let Ok(parts) = clip_greedily(mesh, planes.clone(), eps) {
         return parts;
     }
     if let Some(parts) = clip_in_other_orders(mesh, &planes, eps, |_| true) {
+        return parts;
+    }
+    if let Some(parts) = clip_exactly(mesh, &planes, corners)
+        .map(finish)
+        .filter(|p| good(p))
+    {
         return parts;
     }
     clip_unchecked(mesh, planes, eps)
@@ -58,7 +74,7 @@ pub(super) fn clip_in_other_orders(
 
 /// A cut cell closed, as its connected parts (cavities with the part around them),
 /// without flat triangles ([`Piece::split_flat_triangles`]).
-fn finish(mut cell: Piece) -> Vec<Piece> {
+pub(super) fn finish(mut cell: Piece) -> Vec<Piece> {
     cell.close_faces();
     let mut parts = with_cavities(
         cell.components()
@@ -73,7 +89,7 @@ fn finish(mut cell: Piece) -> Vec<Piece> {
 }
 
 /// Whether every part of a cell is closed.
-fn good(parts: &[Piece]) -> bool {
+pub(super) fn good(parts: &[Piece]) -> bool {
     parts.iter().all(Piece::is_closed)
 }
 

@@ -16,7 +16,8 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::clip::{clip_cell, clip_greedily, clip_in_other_orders};
+use super::clip::{clip_cell, clip_greedily, clip_in_other_orders, good};
+use super::exact::clip_exactly;
 use crate::fracture::kernel::clip::clip_keeping_faces;
 use crate::fracture::kernel::{Piece, Plane};
 
@@ -36,6 +37,9 @@ pub(super) struct Job {
     pub lo: DVec3,
     pub hi: DVec3,
     pub planes: Vec<Plane>,
+    /// The corners, face `f` ([`TET_FACES`](crate::fracture::kernel::convex::TET_FACES)
+    /// `[f]`) on `planes[f]`: for the exact boolean ([`clip_exactly`]).
+    pub corners: [DVec3; 4],
 }
 
 /// Each job's cell: `mesh` clipped by its planes, as connected parts
@@ -48,7 +52,7 @@ pub(super) fn clip_cells(mesh: &Piece, jobs: Vec<Job>, eps: f64, room: f64) -> V
         return jobs
             .into_par_iter()
             .with_max_len(1)
-            .map(|j| clip_cell(mesh, j.planes, eps))
+            .map(|j| clip_cell(mesh, j.planes, j.corners, eps))
             .collect();
     }
     let n = jobs.len();
@@ -63,13 +67,13 @@ pub(super) fn clip_cells(mesh: &Piece, jobs: Vec<Job>, eps: f64, room: f64) -> V
     done.sort_unstable_by_key(|(k, _)| *k);
     done.into_par_iter()
         .with_max_len(1)
-        .map(|(_, cell)| cell.unwrap_or_else(|planes| clip_cell(mesh, planes, eps)))
+        .map(|(_, cell)| cell.unwrap_or_else(|job| clip_cell(mesh, job.planes, job.corners, eps)))
         .collect()
 }
 
-/// A cell clipped from a node's piece, or its planes back, to clip it from the whole
-/// mesh ([`clip_one`]).
-type Cell = Result<Vec<Piece>, Vec<Plane>>;
+/// A cell clipped from a node's piece, or its job back, to clip it from the whole mesh
+/// ([`clip_one`]).
+type Cell = Result<Vec<Piece>, Job>;
 
 /// A node's box.
 #[derive(Clone, Copy)]
@@ -193,16 +197,17 @@ fn descend(
     done.extend(done1);
 }
 
-/// One tetrahedron's cell from a node's piece; its planes back for [`clip_cells`] to
-/// clip it from the whole mesh instead ([`clip_cell`]).
+/// One tetrahedron's cell from a node's piece; its job back for [`clip_cells`] to clip
+/// it from the whole mesh instead ([`clip_cell`]).
 ///
 /// The greedy order is tried first. When its cell is not closed, the other orders are
 /// tried on the node's piece, but a cell of theirs is taken only if its volume is the
 /// greedy one's: on a mesh with features far below the cut tolerance an order can leave
 /// nothing where the whole mesh leaves a part (seen on `regr01.obj`), and the volumes
-/// would no longer add up. A box's cap left by the cuts also sends the cell to the
-/// whole mesh (it cannot be when the tetrahedron lies inside the box, but rounding is
-/// not proved away).
+/// would no longer add up. When no order closes it, the cell is the exact boolean of the
+/// node's piece and the tetrahedron ([`clip_exactly`]). A box's cap left by the cuts
+/// also sends the cell to the whole mesh (it cannot be when the tetrahedron lies inside
+/// the box, but rounding is not proved away).
 fn clip_one(piece: &Piece, job: Job, eps: f64) -> Cell {
     let no_box = |parts: &[Piece]| parts.iter().all(|p| !p.tags.contains(&BOX_TAG));
     let cell = match clip_greedily(piece, job.planes.clone(), eps) {
@@ -214,9 +219,14 @@ fn clip_one(piece: &Piece, job: Job, eps: f64) -> Cell {
                 let v: f64 = parts.iter().map(Piece::volume).sum();
                 no_box(parts) && (v - volume).abs() <= tol
             })
+            .or_else(|| {
+                clip_exactly(piece, &job.planes, job.corners)
+                    .map(super::clip::finish)
+                    .filter(|parts| good(parts) && no_box(parts))
+            })
         }
     };
-    cell.ok_or(job.planes)
+    cell.ok_or(job)
 }
 
 #[cfg(test)]
@@ -269,11 +279,12 @@ mod tests {
             for (f, p) in planes.iter().enumerate() {
                 assert!(p.eval(c[f]) < 0.0);
             }
-            planes_of.push(planes.clone());
+            planes_of.push((planes.clone(), c));
             jobs.push(Job {
                 lo: c[0].min(c[1]).min(c[2]).min(c[3]),
                 hi: c[0].max(c[1]).max(c[2]).max(c[3]),
                 planes,
+                corners: c,
             });
         }
         assert!(jobs.len() > LEAF_TETRAHEDRA);
@@ -281,8 +292,8 @@ mod tests {
         let local = clip_cells(&mesh, jobs, eps, 1e-7);
         let scale = mesh.volume();
         let mut cut = 0;
-        for (parts, planes) in local.iter().zip(planes_of) {
-            let whole = clip_cell(&mesh, planes, eps);
+        for (parts, (planes, c)) in local.iter().zip(planes_of) {
+            let whole = clip_cell(&mesh, planes, c, eps);
             assert_eq!(parts.len(), whole.len());
             let v = |ps: &[Piece]| ps.iter().map(Piece::volume).sum::<f64>();
             assert!((v(parts) - v(&whole)).abs() <= 1e-9 * scale);

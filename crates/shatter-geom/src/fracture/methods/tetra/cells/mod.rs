@@ -9,6 +9,7 @@
 //! their source-triangle tags, cut faces are caps tagged with the tetrahedron face.
 
 mod clip;
+mod exact;
 mod grid;
 mod local;
 
@@ -154,11 +155,13 @@ pub(super) fn cells(
     let jobs: Vec<Job> = to_clip
         .iter()
         .map(|&t| {
-            let (lo, hi) = bounds(&corners(t));
+            let c = corners(t);
+            let (lo, hi) = bounds(&c);
             Job {
                 lo,
                 hi,
                 planes: (0..4).map(|f| face_plane(del, pts, t, f)).collect(),
+                corners: c,
             }
         })
         .collect();
