@@ -91,9 +91,12 @@ pub(crate) fn merge_small_with(
     // small group was quadratic, most of the time on a dense mesh's thousands of
     // slivers).
     let mut grid: Option<VertexGrid> = None;
+    // A group left as it is is counted once (through its first member), not once per
+    // member.
+    let mut seen = vec![false; n];
     for &i in &order {
         let g = groups.uf.find(i);
-        if !small(g, &groups) {
+        if seen[g] || !small(g, &groups) {
             continue;
         }
         let Some(pg) = groups.geometry[g].as_ref() else {
@@ -106,10 +109,14 @@ pub(crate) fn merge_small_with(
             (r != g && groups.geometry[r].is_some()).then_some(r)
         });
         match nearest {
-            None => merged.lonely += 1,
+            None => {
+                merged.lonely += 1;
+                seen[g] = true;
+            }
             Some(h) => {
                 if !groups.join(g, h, eps) {
                     merged.unjoined += 1;
+                    seen[g] = true;
                 }
             }
         }

@@ -45,6 +45,7 @@ mod soup;
 #[cfg(test)]
 mod tests;
 mod union;
+pub(crate) use union::retreat_pinches;
 mod weld;
 
 pub use report::{RepairError, RepairOptions, RepairReport, UnionReport};

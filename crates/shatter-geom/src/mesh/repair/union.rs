@@ -77,6 +77,10 @@ pub(super) fn union(soup: &Soup, diagonal: f64) -> Result<United, UnionFailed> {
         })
 }
 
+/// How far the union's pinches retreat, as a fraction of their edges' mean length
+/// ([`retreat_pinches`]).
+const PINCH_RETREAT: f64 = 1e-6;
+
 /// Coordinates closer than this fraction of the model's size are snapped together, axis
 /// by axis, when the input's own union crosses itself (`weld::coordinates`).
 pub(super) const SNAP_TOLERANCE: f64 = 1e-8;
@@ -165,7 +169,7 @@ fn crate_assembly(soup: &Soup) -> Result<Soup, UnionFailed> {
         }
         tris.push(tri);
     }
-    retreat_pinches(&mut pos, &tris);
+    retreat_pinches(&mut pos, &tris, PINCH_RETREAT);
     let sources = out.face_id.iter().map(|&f| f as usize);
     Ok(with_attributes(soup, pos, tris, sources))
 }
@@ -278,11 +282,13 @@ fn exact_assembly(soup: &Soup, diagonal: f64) -> Result<Soup, UnionFailed> {
 }
 
 /// The crate assembly's pinches (copies of one position, one per fan) retreat each into
-/// its own solid, against its fan's area-weighted normal, by a millionth of its mean
-/// edge length, so the two fans no longer share a position and do not cross: both
-/// retreat from the contact. (Moving along the surface, towards the fan's neighbours,
-/// can push a copy of a flat fan across the coplanar fan it touches.)
-fn retreat_pinches(pos: &mut [DVec3], tris: &[[u32; 3]]) {
+/// its own solid, against its fan's area-weighted normal, by `fraction` of its mean
+/// edge length (the union: [`PINCH_RETREAT`]), so the two fans no longer share a
+/// position and do not cross: both retreat from the contact. (Moving along the
+/// surface, towards the fan's neighbours, can push a copy of a flat fan across the
+/// coplanar fan it touches.) Also the tetra method's exact cells'
+/// (`fracture::methods::tetra::cells::exact`).
+pub(crate) fn retreat_pinches(pos: &mut [DVec3], tris: &[[u32; 3]], fraction: f64) {
     let shared = shared_positions(pos);
     if shared.is_empty() {
         return;
@@ -307,7 +313,7 @@ fn retreat_pinches(pos: &mut [DVec3], tris: &[[u32; 3]]) {
         if let Some(n) = normal[v].try_normalize()
             && count[v] > 0
         {
-            pos[v] -= n * (1e-6 * length[v] / f64::from(count[v]));
+            pos[v] -= n * (fraction * length[v] / f64::from(count[v]));
         }
     }
 }

@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use super::exact::clip_exactly;
+use super::exact::{clip_exactly, edges_manifold};
 use crate::fracture::kernel::clip::clip_keeping_faces;
 use crate::fracture::kernel::{Piece, Plane, with_cavities};
 use crate::util::{FastMap, UnionFind};
@@ -30,7 +30,7 @@ pub(super) fn clip_cell(
     }
     if let Some(parts) = clip_exactly(mesh, &planes, corners)
         .map(finish)
-        .filter(|p| good(p))
+        .filter(|p| good(p) && p.iter().all(edges_manifold))
     {
         return parts;
     }

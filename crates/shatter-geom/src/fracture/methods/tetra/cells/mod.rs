@@ -22,7 +22,7 @@ use crate::fracture::kernel::{Piece, Plane, SURFACE, is_surface, mesh_scale};
 use crate::fracture::seeds::inside::InsideTester;
 use crate::util::{FastMap, UnionFind, bounds};
 use grid::TriangleGrid;
-use local::{Job, clip_cells};
+use local::{Job, clip_cells, exact_cells};
 
 /// Distance (relative to the mesh's size) the surface must keep from a tetrahedron's
 /// faces for it to count as not entering the tetrahedron; nearer, it is clipped.
@@ -152,20 +152,18 @@ pub(super) fn cells(
     let to_clip: Vec<usize> = (0..nt)
         .filter(|&t| side[t] != Side::Outside && !flat[t] && !fast(t))
         .collect();
-    let jobs: Vec<Job> = to_clip
-        .iter()
-        .map(|&t| {
-            let c = corners(t);
-            let (lo, hi) = bounds(&c);
-            Job {
-                lo,
-                hi,
-                planes: (0..4).map(|f| face_plane(del, pts, t, f)).collect(),
-                corners: c,
-            }
-        })
-        .collect();
+    let job = |t: usize| {
+        let c = corners(t);
+        let (lo, hi) = bounds(&c);
+        Job {
+            lo,
+            hi,
+            planes: (0..4).map(|f| face_plane(del, pts, t, f)).collect(),
+            corners: c,
+        }
+    };
     let room = (1e3 * eps).max(1e-9 * mesh_scale(mesh));
+    let jobs: Vec<Job> = to_clip.iter().map(|&t| job(t)).collect();
     // The rest are kept whole (inside, with every neighbour inside) or have no cell.
     let mut per_tet: Vec<Vec<(Piece, bool)>> = (0..nt)
         .map(|t| {
@@ -177,19 +175,28 @@ pub(super) fn cells(
         })
         .collect();
     for (&t, parts) in to_clip.iter().zip(clip_cells(mesh, jobs, eps, room)) {
-        per_tet[t] = parts
-            .into_iter()
-            .map(|mut p| {
-                // A cap on a face of the points' hull has no neighbour: it is the
-                // fragments' outer surface (inside the mesh when corners are skipped).
-                for tag in &mut p.tags {
-                    if !is_surface(*tag) && is_hull_face(del, *tag) {
-                        *tag = SURFACE;
-                    }
+        per_tet[t] = parts.into_iter().map(|p| (p, false)).collect();
+    }
+    // A cell the clipper closed can still be wrong where rounding decides (a CAD
+    // model's faces in a tetrahedron's face plane): the two cells of a face must meet
+    // in equal caps. Those that do not are made again by the exact boolean.
+    let redo = disagreeing(del, pts, &per_tet, &to_clip, &flat, eps);
+    let exact = exact_cells(mesh, redo.iter().map(|&t| job(t)).collect(), eps, room);
+    for (&t, parts) in redo.iter().zip(exact) {
+        if let Some(parts) = parts {
+            per_tet[t] = parts.into_iter().map(|p| (p, false)).collect();
+        }
+    }
+    for &t in &to_clip {
+        for (p, _) in &mut per_tet[t] {
+            // A cap on a face of the points' hull has no neighbour: it is the
+            // fragments' outer surface (inside the mesh when corners are skipped).
+            for tag in &mut p.tags {
+                if !is_surface(*tag) && is_hull_face(del, *tag) {
+                    *tag = SURFACE;
                 }
-                (p, false)
-            })
-            .collect();
+            }
+        }
     }
     let mut out = Cells {
         pieces: Vec::new(),
@@ -214,6 +221,83 @@ pub(super) fn cells(
         }
     }
     out
+}
+
+/// How far the caps of a face's two cells may differ: this fraction of the face's area,
+/// plus the strip of the cuts' on-plane tolerance along its edges, [`CAP_EDGE_STRIP`]
+/// times the tolerance wide (where a cut vertex may be moved onto the plane).
+const CAP_AREA_MISMATCH: f64 = 1e-6;
+const CAP_EDGE_STRIP: f64 = 10.0;
+
+/// The clipped tetrahedra (in `to_clip`, whose cells `per_tet` holds) whose cell does
+/// not meet a neighbour's in equal caps on their shared face: the cap's area vector
+/// (the sum over the cell's triangles tagged with the face) must be minus the
+/// neighbour's when that is clipped too, the whole face when the neighbour is kept
+/// whole, and zero when the neighbour has no cell (the surface there is the mesh's own).
+/// Faces of the points' hull and of flat tetrahedra are not checked. Both tetrahedra of
+/// a face that disagrees are returned, in increasing order.
+fn disagreeing(
+    del: &Tetrahedralization,
+    pts: &[DVec3],
+    per_tet: &[Vec<(Piece, bool)>],
+    to_clip: &[usize],
+    flat: &[bool],
+    eps: f64,
+) -> Vec<usize> {
+    let mut clipped = vec![false; del.len()];
+    for &t in to_clip {
+        clipped[t] = true;
+    }
+    let caps = |t: usize| -> [DVec3; 4] {
+        let tags: [u64; 4] = std::array::from_fn(|f| face_plane(del, pts, t, f).tag);
+        let mut area = [DVec3::ZERO; 4];
+        for (p, _) in &per_tet[t] {
+            for (tri, tag) in p.tris.iter().zip(&p.tags) {
+                if let Some(f) = tags.iter().position(|x| x == tag) {
+                    let [a, b, c] = tri.map(|i| p.pos[i as usize]);
+                    area[f] += 0.5 * (b - a).cross(c - a);
+                }
+            }
+        }
+        area
+    };
+    let areas: Vec<Option<[DVec3; 4]>> = (0..del.len())
+        .into_par_iter()
+        .map(|t| clipped[t].then(|| caps(t)))
+        .collect();
+    let (areas, clipped) = (&areas, &clipped);
+    let mut bad: Vec<usize> = to_clip
+        .par_iter()
+        .filter_map(|&t| areas[t].map(|mine| (t, mine)))
+        .flat_map_iter(|(t, mine)| {
+            let c = del.tetrahedron(t).map(|i| pts[i as usize]);
+            (0..4).filter_map(move |f| {
+                let u = del.neighbors(t)[f];
+                if u == NO_NEIGHBOR || flat[u as usize] {
+                    return None;
+                }
+                let u = u as usize;
+                let [a, b, cc] = TET_FACES[f].map(|i| c[i]);
+                let face = 0.5 * (b - a).cross(cc - a);
+                let expected = match &areas[u] {
+                    Some(theirs) => {
+                        let g = (0..4).find(|&g| del.neighbors(u)[g] as usize == t)?;
+                        -theirs[g]
+                    }
+                    None if per_tet[u].is_empty() => DVec3::ZERO,
+                    None => face,
+                };
+                let perimeter = (b - a).length() + (cc - b).length() + (a - cc).length();
+                let tol = CAP_AREA_MISMATCH * face.length() + CAP_EDGE_STRIP * eps * perimeter;
+                ((mine[f] - expected).length() > tol).then_some([t, u])
+            })
+        })
+        .flatten()
+        .filter(|&t| clipped[t])
+        .collect();
+    bad.sort_unstable();
+    bad.dedup();
+    bad
 }
 
 /// Whether no edge of the closed `mesh` is reflex by more than `delta`: the far corner of
@@ -300,5 +384,57 @@ fn whole_piece(del: &Tetrahedralization, pts: &[DVec3], t: usize) -> Piece {
         tris: TET_FACES.iter().map(|f| f.map(|i| i as u32)).collect(),
         tags,
         faces: Vec::new(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::{disagreeing, face_plane};
+    use crate::delaunay::tetrahedralize;
+    use crate::fracture::kernel::{Piece, Plane};
+    use crate::shapes;
+
+    /// A few tetrahedra about the origin, all cut by the unit cube: their cells meet in
+    /// equal caps, and none is found. A cell clipped from a smaller cube (a cell that
+    /// lost part of its volume) no longer matches its neighbours' caps: it is found, with
+    /// them.
+    #[test]
+    fn a_cell_that_lost_volume_is_found_by_its_neighbours_cap() {
+        // A triangle in z = 0 with one apex above and one below.
+        let pts = vec![
+            DVec3::new(-0.9, -0.8, 0.0),
+            DVec3::new(0.9, -0.7, 0.0),
+            DVec3::new(0.1, 0.9, 0.0),
+            DVec3::new(0.05, 0.0, 0.8),
+            DVec3::new(-0.05, 0.05, -0.8),
+        ];
+        let del = tetrahedralize(&pts).unwrap();
+        let n = del.len();
+        assert!(n >= 2);
+        let cell = |mesh: &Piece, t: usize| -> Vec<(Piece, bool)> {
+            let planes: Vec<Plane> = (0..4).map(|f| face_plane(&del, &pts, t, f)).collect();
+            let corners = del.tetrahedron(t).map(|i| pts[i as usize]);
+            super::clip::clip_cell(mesh, planes, corners, 1e-10)
+                .into_iter()
+                .map(|p| (p, false))
+                .collect()
+        };
+        let cube = Piece::from_mesh_welded(&shapes::cube());
+        let mut per_tet: Vec<Vec<(Piece, bool)>> = (0..n).map(|t| cell(&cube, t)).collect();
+        assert!(per_tet.iter().all(|c| !c.is_empty()));
+        let flat = vec![false; n];
+        let all: Vec<usize> = (0..n).collect();
+        assert!(disagreeing(&del, &pts, &per_tet, &all, &flat, 1e-10).is_empty());
+        let mut smaller = shapes::cube();
+        for p in &mut smaller.positions {
+            p.x *= 0.8;
+        }
+        per_tet[0] = cell(&Piece::from_mesh_welded(&smaller), 0);
+        let found = disagreeing(&del, &pts, &per_tet, &all, &flat, 1e-10);
+        let neighbours = del.neighbors(0);
+        assert!(found.len() >= 2 && found[0] == 0, "{found:?}");
+        assert!(found[1..].iter().all(|&t| neighbours.contains(&(t as u32))));
     }
 }
