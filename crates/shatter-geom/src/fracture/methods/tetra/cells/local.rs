@@ -80,7 +80,7 @@ pub(super) fn exact_cells(
             .collect();
     }
     down_the_tree(mesh, jobs, eps, room, &|piece, job| {
-        exact_parts(piece, &job, eps, room).ok_or(job)
+        exact_parts(piece, &job, eps, room).ok_or_else(|| Box::new(job))
     })
     .into_iter()
     .map(Result::ok)
@@ -108,7 +108,7 @@ type Clip<'a> = dyn Fn(&Piece, Job) -> Cell + Sync + 'a;
 
 /// A cell clipped from a node's piece, or its job back, to clip it from the whole mesh
 /// ([`clip_one`]).
-type Cell = Result<Vec<Piece>, Job>;
+type Cell = Result<Vec<Piece>, Box<Job>>;
 
 /// A node's box.
 #[derive(Clone, Copy)]
@@ -258,7 +258,7 @@ fn clip_one(piece: &Piece, job: Job, eps: f64, room: f64) -> Cell {
             .or_else(|| exact_parts(piece, &job, eps, room))
         }
     };
-    cell.ok_or(job)
+    cell.ok_or_else(|| Box::new(job))
 }
 
 /// Whether no part has a face of a box's cap.
