@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use super::exact::{clip_exactly, edges_manifold};
+use super::exact::clip_exactly;
 use crate::fracture::kernel::clip::clip_keeping_faces;
 use crate::fracture::kernel::{Piece, Plane, with_cavities};
 use crate::util::{FastMap, UnionFind};
@@ -28,15 +28,25 @@ pub(super) fn clip_cell(
     if let Some(parts) = clip_in_other_orders(mesh, &planes, eps, |_| true) {
         return parts;
     }
-    if let Some(parts) = clip_exactly(mesh, &planes, corners)
-        .map(finish)
-        .filter(|p| good(p) && p.iter().all(edges_manifold))
-    {
+    if let Some(parts) = clip_exact(mesh, &planes, corners) {
         return parts;
     }
     clip_unchecked(mesh, planes, eps)
         .map(finish)
         .unwrap_or_default()
+}
+
+/// The cell as the exact boolean of `mesh` and the tetrahedron `corners` (its faces on
+/// `planes`; [`clip_exactly`]), as closed parts; `None` when the boolean fails or a part
+/// is not closed (which also refuses an edge of more than two triangles).
+pub(super) fn clip_exact(
+    mesh: &Piece,
+    planes: &[Plane],
+    corners: [DVec3; 4],
+) -> Option<Vec<Piece>> {
+    clip_exactly(mesh, planes, corners)
+        .map(finish)
+        .filter(|p| good(p))
 }
 
 /// The cell of [`clip_cell`] cut in the greedy order only. Fails when a cut fails the
@@ -74,7 +84,7 @@ pub(super) fn clip_in_other_orders(
 
 /// A cut cell closed, as its connected parts (cavities with the part around them),
 /// without flat triangles ([`Piece::split_flat_triangles`]).
-pub(super) fn finish(mut cell: Piece) -> Vec<Piece> {
+fn finish(mut cell: Piece) -> Vec<Piece> {
     cell.close_faces();
     let mut parts = with_cavities(
         cell.components()
@@ -89,7 +99,7 @@ pub(super) fn finish(mut cell: Piece) -> Vec<Piece> {
 }
 
 /// Whether every part of a cell is closed.
-pub(super) fn good(parts: &[Piece]) -> bool {
+fn good(parts: &[Piece]) -> bool {
     parts.iter().all(Piece::is_closed)
 }
 

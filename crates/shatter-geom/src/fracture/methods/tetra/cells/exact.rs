@@ -21,7 +21,6 @@ use manifold_rust::types::{BooleanEngine, Error as ManifoldStatus, MeshGL64, OpT
 use crate::fracture::kernel::convex::{TET_FACES, tet_volume};
 use crate::fracture::kernel::{Piece, Plane};
 use crate::mesh::repair::retreat_pinches;
-use crate::util::FastMap;
 
 /// How far the copies of a pinched vertex retreat, as a fraction of their edges' mean
 /// length: well above the rounding-length edges a later weld collapses (1e-13 of a
@@ -86,8 +85,11 @@ fn intersection(piece: &Piece, planes: &[Plane], corners: [DVec3; 4]) -> Option<
         .chunks_exact(np)
         .map(|v| DVec3::new(v[0], v[1], v[2]))
         .collect();
-    let mut tris = Vec::with_capacity(out.tri_verts.len() / 3);
-    let mut tags = Vec::with_capacity(out.tri_verts.len() / 3);
+    if out.face_id.len() * 3 != out.tri_verts.len() {
+        return None;
+    }
+    let mut tris = Vec::with_capacity(out.face_id.len());
+    let mut tags = Vec::with_capacity(out.face_id.len());
     for (tri, &id) in out.tri_verts.chunks_exact(3).zip(&out.face_id) {
         let tri = [tri[0], tri[1], tri[2]].map(|v| v as u32);
         if tri.iter().any(|&v| v as usize >= pos.len()) {
@@ -101,9 +103,6 @@ fn intersection(piece: &Piece, planes: &[Plane], corners: [DVec3; 4]) -> Option<
         };
         tris.push(tri);
         tags.push(tag);
-    }
-    if out.face_id.len() != tris.len() {
-        return None;
     }
     let mut cell = Piece {
         pos,
@@ -121,44 +120,15 @@ fn intersection(piece: &Piece, planes: &[Plane], corners: [DVec3; 4]) -> Option<
     Some(cell)
 }
 
-/// Whether every edge of `p` is used by at most two triangles (by vertex index).
-pub(super) fn edges_manifold(p: &Piece) -> bool {
-    let mut uses: FastMap<(u32, u32), u8> = FastMap::default();
-    uses.reserve(3 * p.tris.len() / 2);
-    p.tris.iter().all(|t| {
-        (0..3).all(|k| {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            let n = uses.entry((a.min(b), a.max(b))).or_default();
-            *n += 1;
-            *n <= 2
-        })
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use glam::DVec3;
 
+    use super::super::corner_plane;
     use super::clip_exactly;
-    use crate::fracture::kernel::convex::{TET_FACES, tet_volume};
+    use crate::fracture::kernel::convex::tet_volume;
     use crate::fracture::kernel::{Piece, Plane, is_surface};
     use crate::shapes;
-
-    fn planes(c: [DVec3; 4], first_tag: u64) -> Vec<Plane> {
-        TET_FACES
-            .iter()
-            .enumerate()
-            .map(|(f, face)| {
-                let [a, b, cc] = face.map(|i| c[i]);
-                let n = (b - a).cross(cc - a);
-                Plane {
-                    n,
-                    d: n.dot(a),
-                    tag: first_tag + f as u64,
-                }
-            })
-            .collect()
-    }
 
     /// A tetrahedron with a corner at the centre of the unit cube and three at its
     /// corners, one face on the cube's face `z = 0.5`: the cut is the part of the
@@ -177,7 +147,7 @@ mod tests {
         if tet_volume(c) < 0.0 {
             c.swap(0, 1);
         }
-        let planes = planes(c, 40);
+        let planes: Vec<Plane> = (0..4).map(|f| corner_plane(c, f, 40 + f as u64)).collect();
         let cell = clip_exactly(&cube, &planes, c).expect("the boolean succeeds");
         assert!(cell.is_closed());
         // The tetrahedron is a right-angled corner: legs 1, 1 (on top) and 2 (down);

@@ -16,8 +16,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::clip::{clip_cell, clip_greedily, clip_in_other_orders, finish, good};
-use super::exact::{clip_exactly, edges_manifold};
+use super::clip::{clip_cell, clip_exact, clip_greedily, clip_in_other_orders};
 use crate::fracture::kernel::clip::clip_keeping_faces;
 use crate::fracture::kernel::{Piece, Plane};
 
@@ -38,7 +37,7 @@ pub(super) struct Job {
     pub hi: DVec3,
     pub planes: Vec<Plane>,
     /// The corners, face `f` ([`TET_FACES`](crate::fracture::kernel::convex::TET_FACES)
-    /// `[f]`) on `planes[f]`: for the exact boolean ([`clip_exactly`]).
+    /// `[f]`) on `planes[f]`: for the exact boolean ([`clip_exact`]).
     pub corners: [DVec3; 4],
 }
 
@@ -64,7 +63,7 @@ pub(super) fn clip_cells(mesh: &Piece, jobs: Vec<Job>, eps: f64, room: f64) -> V
     .collect()
 }
 
-/// Each job's cell by the exact boolean ([`clip_exactly`]), from the node's piece down
+/// Each job's cell by the exact boolean ([`clip_exact`]), from the node's piece down
 /// the same tree as [`clip_cells`]; `None` where it fails.
 pub(super) fn exact_cells(
     mesh: &Piece,
@@ -180,8 +179,6 @@ fn descend(
             (false, false) => stay.push((k, job)),
         }
     }
-    let mut unit = DVec3::ZERO;
-    unit[axis] = 1.0;
     // Each child's piece is its parent's clipped by the plane at its side of the split.
     let child = |side: usize| -> (Piece, Node) {
         let (sign, at) = if side == 0 {
@@ -189,13 +186,7 @@ fn descend(
         } else {
             (-1.0, bottom1)
         };
-        let mut n = DVec3::ZERO;
-        n[axis] = sign;
-        let plane = Plane {
-            n,
-            d: sign * at,
-            tag: BOX_TAG,
-        };
+        let plane = box_plane(axis, sign, at);
         let mut bounds = node;
         if side == 0 {
             bounds.hi[axis] = at;
@@ -242,7 +233,7 @@ fn descend(
 /// greedy one's: on a mesh with features far below the cut tolerance an order can leave
 /// nothing where the whole mesh leaves a part (seen on `regr01.obj`), and the volumes
 /// would no longer add up. When no order closes it, the cell is the exact boolean of the
-/// node's piece and the tetrahedron ([`clip_exactly`]). A box's cap left by the cuts
+/// node's piece and the tetrahedron ([`clip_exact`]). A box's cap left by the cuts
 /// also sends the cell to the whole mesh (it cannot be when the tetrahedron lies inside
 /// the box, but rounding is not proved away).
 fn clip_one(piece: &Piece, job: Job, eps: f64, room: f64) -> Cell {
@@ -261,6 +252,18 @@ fn clip_one(piece: &Piece, job: Job, eps: f64, room: f64) -> Cell {
     cell.ok_or_else(|| Box::new(job))
 }
 
+/// The plane `sign · x[axis] = sign · at` (keeping `sign · x[axis] ≤ sign · at`),
+/// tagged as a box's cap.
+fn box_plane(axis: usize, sign: f64, at: f64) -> Plane {
+    let mut n = DVec3::ZERO;
+    n[axis] = sign;
+    Plane {
+        n,
+        d: sign * at,
+        tag: BOX_TAG,
+    }
+}
+
 /// Whether no part has a face of a box's cap.
 fn no_box(parts: &[Piece]) -> bool {
     parts.iter().all(|p| !p.tags.contains(&BOX_TAG))
@@ -275,13 +278,7 @@ fn exact_parts(piece: &Piece, job: &Job, eps: f64, room: f64) -> Option<Vec<Piec
     let mut near: Option<Piece> = None;
     for axis in 0..3 {
         for (sign, at) in [(1.0, job.hi[axis] + room), (-1.0, job.lo[axis] - room)] {
-            let mut n = DVec3::ZERO;
-            n[axis] = sign;
-            let plane = Plane {
-                n,
-                d: sign * at,
-                tag: BOX_TAG,
-            };
+            let plane = box_plane(axis, sign, at);
             let current = near.as_ref().unwrap_or(piece);
             if let Some(mut cut) = clip_keeping_faces(current, &plane, eps) {
                 if cut.is_empty() {
@@ -292,11 +289,7 @@ fn exact_parts(piece: &Piece, job: &Job, eps: f64, room: f64) -> Option<Vec<Piec
             }
         }
     }
-    let exact = |from: &Piece| {
-        clip_exactly(from, &job.planes, job.corners)
-            .map(finish)
-            .filter(|parts| good(parts) && no_box(parts) && parts.iter().all(edges_manifold))
-    };
+    let exact = |from: &Piece| clip_exact(from, &job.planes, job.corners).filter(|p| no_box(p));
     // The cuts to the box can fail where the cell's own cuts did (the boolean then
     // refuses the open piece): then the whole piece.
     match &near {
@@ -311,8 +304,9 @@ mod tests {
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
+    use super::super::corner_plane;
     use super::{Job, LEAF_TETRAHEDRA, LEAF_TRIANGLES, clip_cell, clip_cells};
-    use crate::fracture::kernel::convex::{TET_FACES, tet_volume};
+    use crate::fracture::kernel::convex::tet_volume;
     use crate::fracture::kernel::{Piece, Plane};
     use crate::shapes;
 
@@ -338,18 +332,8 @@ mod tests {
             if tet_volume(c) < 0.0 {
                 c.swap(0, 1);
             }
-            let planes: Vec<Plane> = TET_FACES
-                .iter()
-                .enumerate()
-                .map(|(f, face)| {
-                    let [a, b, cc] = face.map(|i| c[i]);
-                    let n = (b - a).cross(cc - a);
-                    Plane {
-                        n,
-                        d: n.dot(a),
-                        tag: (4 * t + f) as u64,
-                    }
-                })
+            let planes: Vec<Plane> = (0..4)
+                .map(|f| corner_plane(c, f, (4 * t + f) as u64))
                 .collect();
             // Outward: the opposite corner is on the kept side of each face.
             for (f, p) in planes.iter().enumerate() {

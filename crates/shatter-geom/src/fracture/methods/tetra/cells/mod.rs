@@ -350,13 +350,19 @@ pub(super) fn face_plane(del: &Tetrahedralization, pts: &[DVec3], t: usize, f: u
 
 /// The plane of face `f` of `t` from its own corners, outward, tagged `4t + f`.
 pub(super) fn own_plane(del: &Tetrahedralization, pts: &[DVec3], t: usize, f: usize) -> Plane {
-    let c = del.tetrahedron(t);
-    let [a, b, cc] = TET_FACES[f].map(|i| pts[c[i] as usize]);
+    let c = del.tetrahedron(t).map(|i| pts[i as usize]);
+    corner_plane(c, f, (4 * t + f) as u64)
+}
+
+/// The plane of face `f` ([`TET_FACES`]`[f]`) of the tetrahedron with corners `c`,
+/// outward when `c` is positively oriented, tagged `tag`.
+fn corner_plane(c: [DVec3; 4], f: usize, tag: u64) -> Plane {
+    let [a, b, cc] = TET_FACES[f].map(|i| c[i]);
     let n = (b - a).cross(cc - a);
     Plane {
         n,
         d: n.dot(a),
-        tag: (4 * t + f) as u64,
+        tag,
     }
 }
 
