@@ -244,10 +244,6 @@ fn disagreeing(
     flat: &[bool],
     eps: f64,
 ) -> Vec<usize> {
-    let mut clipped = vec![false; del.len()];
-    for &t in to_clip {
-        clipped[t] = true;
-    }
     let caps = |t: usize| -> [DVec3; 4] {
         let tags: [u64; 4] = std::array::from_fn(|f| face_plane(del, pts, t, f).tag);
         let mut area = [DVec3::ZERO; 4];
@@ -261,11 +257,13 @@ fn disagreeing(
         }
         area
     };
-    let areas: Vec<Option<[DVec3; 4]>> = (0..del.len())
-        .into_par_iter()
-        .map(|t| clipped[t].then(|| caps(t)))
-        .collect();
-    let (areas, clipped) = (&areas, &clipped);
+    // Per tetrahedron, its cell's caps when it is clipped.
+    let mut areas: Vec<Option<[DVec3; 4]>> = vec![None; del.len()];
+    let computed: Vec<[DVec3; 4]> = to_clip.par_iter().map(|&t| caps(t)).collect();
+    for (&t, a) in to_clip.iter().zip(computed) {
+        areas[t] = Some(a);
+    }
+    let areas = &areas;
     let mut bad: Vec<usize> = to_clip
         .par_iter()
         .filter_map(|&t| areas[t].map(|mine| (t, mine)))
@@ -293,7 +291,7 @@ fn disagreeing(
             })
         })
         .flatten()
-        .filter(|&t| clipped[t])
+        .filter(|&t| areas[t].is_some())
         .collect();
     bad.sort_unstable();
     bad.dedup();
