@@ -46,13 +46,33 @@ pub fn shape_quality(p: [DVec3; 3]) -> f64 {
     (p[1] - p[0]).cross(p[2] - p[0]).length() / longest
 }
 
+/// How many times `eps` a cap triangle's least altitude must be for
+/// [`interior_uvs_agree`] to take its plane as known: at this size, a triangle within
+/// `eps` of another's plane is tilted from it by at most 5e-4 rad, half the angle under
+/// which the library gives two cap planes one UV basis (1e-3).
+pub const PLANE_SIZE: f64 = 4e3;
+
+/// A triangle's least altitude: twice its area over its longest edge.
+pub fn least_altitude(p: [DVec3; 3]) -> f64 {
+    let longest = (p[1] - p[0])
+        .length()
+        .max((p[2] - p[1]).length())
+        .max((p[0] - p[2]).length());
+    (p[1] - p[0]).cross(p[2] - p[0]).length() / longest
+}
+
 /// Interior UVs across bonds: for every bond, every pair of cap triangles of its two
 /// fragments that lie in one plane (within `eps`, normals opposite within 1.4e-4 rad)
 /// facing each other, the UV both give
 /// at the centroid of the first (where it is well inside the second) must agree within
 /// `tol`. Slivers (shape quality below 1e-3) are left out on both sides: interpolating
-/// `f32` UVs over a triangle a millionth as wide as it is long only measures rounding. Panics naming the bond otherwise; returns (points compared, bonds with at
-/// least one point compared).
+/// `f32` UVs over a triangle a millionth as wide as it is long only measures rounding.
+/// So are triangles whose least altitude is under [`PLANE_SIZE`] times `eps`: lying in
+/// one plane within `eps` says which plane only for a triangle well wider than `eps` (on
+/// the tetra method's engine, triangles 2e-5 wide, 30 `eps`, about a cluster of points
+/// a rounding error apart, tilted 0.2 rad off their own cap's plane, lay within `eps`
+/// of a cap of another plane, facing it). Panics naming
+/// the bond otherwise; returns (points compared, bonds with at least one point compared).
 pub fn interior_uvs_agree(fr: &Fracture, eps: f64, tol: f64, what: &str) -> (usize, usize) {
     let caps = |f: &Fragment| -> Vec<usize> {
         (0..f.mesh.triangles.len())
@@ -73,7 +93,7 @@ pub fn interior_uvs_agree(fr: &Fracture, eps: f64, tol: f64, what: &str) -> (usi
         let mut here = 0;
         for ta in caps(fa) {
             let pa = tri(&fa.mesh, ta);
-            if shape_quality(pa) < 1e-3 {
+            if shape_quality(pa) < 1e-3 || least_altitude(pa) < PLANE_SIZE * eps {
                 continue;
             }
             let na = (pa[1] - pa[0]).cross(pa[2] - pa[0]);
@@ -87,7 +107,11 @@ pub fn interior_uvs_agree(fr: &Fracture, eps: f64, tol: f64, what: &str) -> (usi
                 // Facing each other: opposite normals (not merely within `eps` of one
                 // plane, which any triangles a few `eps` across are).
                 let nb = (pb[1] - pb[0]).cross(pb[2] - pb[0]).normalize_or_zero();
-                if !coplanar || nb.dot(na) > -(1.0 - 1e-8) || shape_quality(pb) < 1e-3 {
+                if !coplanar
+                    || nb.dot(na) > -(1.0 - 1e-8)
+                    || shape_quality(pb) < 1e-3
+                    || least_altitude(pb) < PLANE_SIZE * eps
+                {
                     continue;
                 }
                 let w = bary(pb, centre);

@@ -36,8 +36,8 @@ use crate::TriMesh;
 use crate::io::{INTERIOR_COLOR, INTERIOR_MATERIAL};
 use crate::model::{Corners, Material};
 use nearest::NearestTriangle;
-pub(crate) use planar::OWN_PLANE;
 use planar::{Basis, UvFrame, cap_bases};
+pub(crate) use planar::{OWN_PLANE, SAME_PLANE_SINE};
 
 /// What the fragments' attributes come from: the input mesh (as given to the fracture,
 /// before welding: the surface tags index its triangles) and its attributes.

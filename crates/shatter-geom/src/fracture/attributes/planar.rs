@@ -121,10 +121,22 @@ impl UvFrame {
     }
 }
 
-/// One basis per cap tag over all fragments: the canonical basis of the sum of the
-/// tag's triangle normals (each turned to agree with the sum so far; in fragment and
-/// triangle order, so the result is deterministic). Every triangle of a tag lies in one
-/// plane, the two sides of a bond included, so they all share the basis.
+/// Cap planes whose unit normals are parallel up to this sine (0.06°) share one UV
+/// basis. Two cuts in nearly the same plane (the faces on either side of a sliver, which
+/// a CAD model's nearly coplanar points leave in the tetra method) can face each other
+/// across a crack under different tags; a basis per tag alone would differ between them
+/// by their angle (a UV step of about the angle across the crack), and by a whole axis
+/// where [`Basis::canonical`]'s choice of axis ties. A cap projected with its group's
+/// basis is sheared by at most about the group's spread, far below what a texture shows.
+pub(crate) const SAME_PLANE_SINE: f64 = 1e-3;
+
+/// One basis per cap tag over all fragments. Each tag's plane normal is the sum of its
+/// triangles' normals (area-weighted, each turned to agree with the sum so far; in
+/// fragment and triangle order, so the result is deterministic). Tags whose normals are
+/// parallel up to [`SAME_PLANE_SINE`] (either way round) are grouped, transitively, and
+/// every tag of a group gets the canonical basis of the group's summed normal. Every
+/// triangle of a tag lies in one plane, the two sides of a bond included, so they all
+/// share the basis; so do facing caps of two tags in one plane.
 pub(crate) fn cap_bases(fragments: &[Fragment], tags: &[Vec<u64>]) -> FastMap<u64, Basis> {
     let mut sums: FastMap<u64, DVec3> = FastMap::default();
     for (f, tags) in fragments.iter().zip(tags) {
@@ -142,7 +154,71 @@ pub(crate) fn cap_bases(fragments: &[Fragment], tags: &[Vec<u64>]) -> FastMap<u6
             }
         }
     }
-    sums.into_iter()
-        .map(|(tag, n)| (tag, Basis::canonical(n)))
+    let mut sums: Vec<(u64, DVec3)> = sums.into_iter().collect();
+    sums.sort_unstable_by_key(|&(tag, _)| tag);
+    let group = same_plane_groups(&sums);
+    let mut group_sum = vec![DVec3::ZERO; sums.len()];
+    for (&(_, n), &g) in sums.iter().zip(&group) {
+        let s = &mut group_sum[g];
+        if s.dot(n) < 0.0 {
+            *s -= n;
+        } else {
+            *s += n;
+        }
+    }
+    sums.iter()
+        .zip(&group)
+        .map(|(&(tag, _), &g)| (tag, Basis::canonical(group_sum[g])))
+        .collect()
+}
+
+/// Per normal of `sums`, the index of its group's first member: normals parallel up to
+/// [`SAME_PLANE_SINE`], either way round, joined transitively. Found through a grid of
+/// the unit normals (cells twice the bound wide, so a normal's partners lie in its cell
+/// or the next one towards it along each axis), looked up with the normal and its
+/// opposite.
+fn same_plane_groups(sums: &[(u64, DVec3)]) -> Vec<usize> {
+    const CELL: f64 = 2.0 * SAME_PLANE_SINE;
+    let unit: Vec<Option<DVec3>> = sums.iter().map(|&(_, n)| n.try_normalize()).collect();
+    let cell_of = |m: DVec3| (m / CELL).floor().as_i64vec3().to_array();
+    let mut grid: FastMap<[i64; 3], Vec<usize>> = FastMap::default();
+    for (i, n) in unit.iter().enumerate() {
+        if let Some(n) = n {
+            grid.entry(cell_of(*n)).or_default().push(i);
+        }
+    }
+    let mut groups = crate::util::UnionFind::new(sums.len());
+    for (i, n) in unit.iter().enumerate() {
+        let Some(n) = *n else { continue };
+        for m in [n, -n] {
+            let k = cell_of(m);
+            let frac = m / CELL - (m / CELL).floor();
+            let step = frac.to_array().map(|f| if f < 0.5 { -1 } else { 1 });
+            for corner in 0..8 {
+                let mut c = k;
+                for (axis, s) in step.iter().enumerate() {
+                    if corner >> axis & 1 == 1 {
+                        c[axis] += s;
+                    }
+                }
+                for &j in grid.get(&c).map_or(&[][..], Vec::as_slice) {
+                    if j < i && unit[j].is_some_and(|o| o.cross(n).length() <= SAME_PLANE_SINE) {
+                        groups.union(i, j);
+                    }
+                }
+            }
+        }
+    }
+    // Each group named by its first member (the least tag), so the sums are made in
+    // tag order.
+    let mut first = vec![usize::MAX; sums.len()];
+    (0..sums.len())
+        .map(|i| {
+            let r = groups.find(i);
+            if first[r] == usize::MAX {
+                first[r] = i;
+            }
+            first[r]
+        })
         .collect()
 }

@@ -2,8 +2,10 @@ use glam::DVec3;
 use proptest::prelude::*;
 
 use super::nearest::{NearestTriangle, closest_point};
-use super::planar::Basis;
+use super::planar::{Basis, SAME_PLANE_SINE, cap_bases};
 use super::{barycentric, mix};
+use crate::fracture::entry::fragment;
+use crate::fracture::kernel::{Piece, SURFACE};
 use crate::shapes;
 
 fn v3() -> impl Strategy<Value = DVec3> {
@@ -38,6 +40,65 @@ fn a_triangle_basis_ignores_the_winding() {
     assert_eq!(b, Basis::of_triangle([p[0], p[2], p[1]]));
     assert_eq!(b, Basis::of_triangle([p[2], p[1], p[0]]));
     assert_eq!(b, Basis::of_triangle([p[1], p[2], p[0]]));
+}
+
+/// A tetrahedron at `at` whose face 0 lies in the plane of normal `n` and carries
+/// `tag`; the other three faces are the surface.
+fn tet_with_cap(at: DVec3, n: DVec3, tag: u64) -> Piece {
+    let n = n.normalize();
+    let e1 = n.any_orthonormal_vector();
+    let e2 = n.cross(e1);
+    Piece {
+        pos: vec![at, at + e1, at + e2, at - n],
+        tris: vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]],
+        tags: vec![tag, SURFACE, SURFACE, SURFACE],
+        faces: Vec::new(),
+    }
+}
+
+/// Two caps facing each other across a crack in nearly one plane (normals a few 1e-7
+/// apart, as the faces on either side of a sliver leave them), at 45° between the x and
+/// y axes, where the canonical basis of each normal alone takes different axes: they get
+/// one basis. So do two caps 5e-4 rad apart (whose own bases would differ by that much,
+/// a UV step of about 5e-4 across the crack); a cap 1e-2 rad off keeps its own.
+#[test]
+fn caps_in_nearly_one_plane_share_a_basis_where_the_axis_ties() {
+    let n1 = DVec3::new(1.0 - 1.5e-6, 1.0, 0.0).normalize();
+    let n2 = -DVec3::new(1.0 - 0.5e-6, 1.0, 0.0).normalize();
+    assert!(n1.cross(n2).length() < SAME_PLANE_SINE);
+    assert_ne!(
+        Basis::canonical(n1),
+        Basis::canonical(n2),
+        "the two normals alone must pick different axes for the test to bite"
+    );
+    let z = DVec3::new(0.2, 0.1, 1.0).normalize();
+    let tilted = |angle: f64| glam::DQuat::from_axis_angle(z.any_orthonormal_vector(), angle) * z;
+    let pieces = [
+        tet_with_cap(DVec3::ZERO, n1, 7),
+        tet_with_cap(DVec3::new(0.1, 0.0, 0.0), n2, 9),
+        tet_with_cap(DVec3::new(3.0, 0.0, 0.0), z, 11),
+        tet_with_cap(DVec3::new(3.0, 0.1, 0.0), -tilted(5e-4), 13),
+        tet_with_cap(DVec3::new(6.0, 0.0, 0.0), tilted(1e-2), 15),
+    ];
+    let fragments: Vec<_> = pieces.iter().map(fragment).collect();
+    let tags: Vec<Vec<u64>> = pieces.iter().map(|p| p.tags.clone()).collect();
+    let bases = cap_bases(&fragments, &tags);
+    assert_eq!(
+        bases.len(),
+        5,
+        "one basis per cap tag, none for the surface"
+    );
+    assert_eq!(bases[&7], bases[&9]);
+    assert!(bases[&7].n.cross(n1).length() < SAME_PLANE_SINE);
+    assert_ne!(
+        Basis::canonical(z),
+        Basis::canonical(tilted(5e-4)),
+        "alone, the two would differ"
+    );
+    assert_eq!(bases[&11], bases[&13]);
+    assert!(bases[&11].n.cross(z).length() < SAME_PLANE_SINE);
+    let (own, alone) = (bases[&15], Basis::canonical(tilted(1e-2)));
+    assert!(own.u.distance(alone.u) < 1e-12 && own.v.distance(alone.v) < 1e-12);
 }
 
 proptest! {

@@ -30,6 +30,9 @@ const CROSS_MARGIN: f64 = 1e-12;
 /// Tetrahedra of at most this fraction of the mesh's volume are flat: left out, their
 /// faces made one plane (as fragments they would have back-to-back faces).
 pub(super) const FLAT_FRACTION: f64 = 1e-16;
+/// A flat tetrahedron's faces are made one plane when their normals are parallel up to
+/// this sine (the same bound as the UV bases' planes, [`crate::fracture::attributes`]).
+const COPLANAR_SINE: f64 = crate::fracture::attributes::SAME_PLANE_SINE;
 /// A tetrahedron on the points' hull at most this thin (relative to the mesh's size) is
 /// flat too: four surface points coplanar up to the input's own precision (a float32
 /// file's quads are planar only to about 1e-7 of its size). Kept, it would be a sliver
@@ -111,19 +114,28 @@ pub(super) fn cells(
     // out, and its faces are made one plane: the caps its neighbours have on either side
     // then bond through their overlaps.
     let thin = HULL_FLAT_THICKNESS * mesh_scale(mesh);
+    let hull_thin = |t: usize, c: [DVec3; 4], volume: f64| {
+        del.neighbors(t).contains(&NO_NEIGHBOR) && thickness(c, volume) <= thin
+    };
     let flat: Vec<bool> = (0..nt)
         .map(|t| {
             let c = corners(t);
             let volume = tet_volume(c);
-            volume <= min_volume
-                || (del.neighbors(t).contains(&NO_NEIGHBOR) && thickness(c, volume) <= thin)
+            volume <= min_volume || hull_thin(t, c, volume)
         })
         .collect();
     // A flat tetrahedron on the points' hull (coplanar points on a flat part of it)
-    // makes its neighbours' faces there outer surface.
+    // makes its neighbours' faces there outer surface. One that is merely tiny (a few
+    // points a rounding error apart, as a CAD model's welded cracks leave them) is left
+    // out too, but its faces are not one plane: made one, their caps would share one
+    // UV basis averaged over planes far apart, and match no facing cap's.
     let mut same_plane = UnionFind::new(4 * nt);
     let mut hull_faces: Vec<usize> = Vec::new();
     for t in (0..nt).filter(|&t| flat[t]) {
+        let c = corners(t);
+        if !hull_thin(t, c, tet_volume(c)) && !faces_coplanar(c) {
+            continue;
+        }
         let first = face_plane(del, pts, t, 0).tag as usize;
         for f in 0..4 {
             let tag = face_plane(del, pts, t, f).tag as usize;
@@ -319,6 +331,19 @@ fn convex_within(mesh: &Piece, delta: f64) -> bool {
     })
 }
 
+/// Whether the four faces of the tetrahedron `c` lie in one plane up to
+/// [`COPLANAR_SINE`]: each face's unit normal parallel to the first's, up to sign (faces
+/// of no area, collinear corners, agree with any).
+fn faces_coplanar(c: [DVec3; 4]) -> bool {
+    let normals: Vec<DVec3> = TET_FACES
+        .iter()
+        .filter_map(|f| (c[f[1]] - c[f[0]]).cross(c[f[2]] - c[f[0]]).try_normalize())
+        .collect();
+    normals
+        .iter()
+        .all(|n| n.cross(normals[0]).length() <= COPLANAR_SINE)
+}
+
 /// The height of a tetrahedron of volume `volume` over its largest face: how thin it is.
 fn thickness(c: [DVec3; 4], volume: f64) -> f64 {
     let largest = TET_FACES
@@ -395,7 +420,7 @@ fn whole_piece(del: &Tetrahedralization, pts: &[DVec3], t: usize) -> Piece {
 mod tests {
     use glam::DVec3;
 
-    use super::{disagreeing, face_plane};
+    use super::{COPLANAR_SINE, disagreeing, face_plane, faces_coplanar};
     use crate::delaunay::tetrahedralize;
     use crate::fracture::kernel::{Piece, Plane};
     use crate::shapes;
@@ -440,5 +465,31 @@ mod tests {
         let neighbours = del.neighbors(0);
         assert!(found.len() >= 2 && found[0] == 0, "{found:?}");
         assert!(found[1..].iter().all(|&t| neighbours.contains(&(t as u32))));
+    }
+
+    /// Four points a rounding error off one plane make a tetrahedron whose faces are one
+    /// plane; a tiny regular tetrahedron (of any volume) does not, nor does one whose
+    /// fourth point stands off the plane by more than the bound allows.
+    #[test]
+    fn only_a_tetrahedron_of_coplanar_faces_is_made_one_plane() {
+        let base = [DVec3::ZERO, DVec3::X, DVec3::Y];
+        let flat = [base[0], base[1], base[2], DVec3::new(0.4, 0.4, 1e-12)];
+        assert!(faces_coplanar(flat));
+        let off = [
+            base[0],
+            base[1],
+            base[2],
+            DVec3::new(0.4, 0.4, 10.0 * COPLANAR_SINE),
+        ];
+        assert!(!faces_coplanar(off));
+        let tiny = [
+            DVec3::ZERO,
+            DVec3::new(1e-7, 0.0, 0.0),
+            DVec3::new(0.0, 1e-7, 0.0),
+            DVec3::new(0.0, 0.0, 1e-7),
+        ];
+        assert!(!faces_coplanar(tiny), "tiny is not flat");
+        let collinear = [DVec3::ZERO, DVec3::X, 2.0 * DVec3::X, 3.0 * DVec3::X];
+        assert!(faces_coplanar(collinear), "no face has an area");
     }
 }
