@@ -30,10 +30,8 @@ const SLOW: &[(&str, &str, &str)] = &[
     (
         "gltf/engine/2CylinderEngine.glb",
         "tetra",
-        "tetra on the engine's 87,000 surface vertices: about 5 minutes in release (29 \
-         with this test's checks). Its volumes add up and its fragments are closed, but \
-         the interior UVs differ across one bond (1015-6114: two caps in one plane \
-         projected as different planes); issue 13 is open for it",
+        "tetra on the engine's 87,000 surface vertices: about 5 minutes in release, 11 \
+         with this test's checks (8,037 fragments, 20,531 bonds); passes every check",
     ),
     (
         "obj/regr01.obj",
