@@ -27,8 +27,9 @@ use local::{Job, clip_cells, exact_cells};
 /// Distance (relative to the mesh's size) the surface must keep from a tetrahedron's
 /// faces for it to count as not entering the tetrahedron; nearer, it is clipped.
 const CROSS_MARGIN: f64 = 1e-12;
-/// Tetrahedra of at most this fraction of the mesh's volume are flat: left out, their
-/// faces made one plane (as fragments they would have back-to-back faces).
+/// Tetrahedra of at most this fraction of the mesh's volume are flat: left out (as
+/// fragments they would have back-to-back faces), their faces made one plane where they
+/// are one ([`COPLANAR_SINE`]).
 pub(super) const FLAT_FRACTION: f64 = 1e-16;
 /// A flat tetrahedron's faces are made one plane when their normals are parallel up to
 /// this sine (the same bound as the UV bases' planes, [`crate::fracture::attributes`]).
