@@ -181,15 +181,29 @@ fn same_plane_groups(sums: &[(u64, DVec3)]) -> Vec<usize> {
     const CELL: f64 = 2.0 * SAME_PLANE_SINE;
     let unit: Vec<Option<DVec3>> = sums.iter().map(|&(_, n)| n.try_normalize()).collect();
     let cell_of = |m: DVec3| (m / CELL).floor().as_i64vec3().to_array();
-    let mut grid: FastMap<[i64; 3], Vec<usize>> = FastMap::default();
-    for (i, n) in unit.iter().enumerate() {
-        if let Some(n) = n {
-            grid.entry(cell_of(*n)).or_default().push(i);
-        }
-    }
     let mut groups = crate::util::UnionFind::new(sums.len());
+    // Equal normals (a CAD model's axis-aligned caps, by the thousand) join at once, and
+    // only the first of them goes into the grid: a cell's list stays short.
+    let mut equal: FastMap<[u64; 3], usize> = FastMap::default();
+    let mut grid: FastMap<[i64; 3], Vec<usize>> = FastMap::default();
+    let mut listed = vec![false; unit.len()];
     for (i, n) in unit.iter().enumerate() {
         let Some(n) = *n else { continue };
+        let first_nonzero = n.to_array().into_iter().find(|&x| x != 0.0).unwrap_or(1.0);
+        let key = (n * first_nonzero.signum()).to_array().map(f64::to_bits);
+        match equal.entry(key) {
+            std::collections::hash_map::Entry::Occupied(e) => groups.union(i, *e.get()),
+            std::collections::hash_map::Entry::Vacant(e) => {
+                e.insert(i);
+                listed[i] = true;
+                grid.entry(cell_of(n)).or_default().push(i);
+            }
+        }
+    }
+    for (i, n) in unit.iter().enumerate() {
+        let Some(n) = n.filter(|_| listed[i]) else {
+            continue;
+        };
         for m in [n, -n] {
             let k = cell_of(m);
             let frac = m / CELL - (m / CELL).floor();

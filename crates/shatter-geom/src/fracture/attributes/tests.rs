@@ -60,7 +60,8 @@ fn tet_with_cap(at: DVec3, n: DVec3, tag: u64) -> Piece {
 /// apart, as the faces on either side of a sliver leave them), at 45° between the x and
 /// y axes, where the canonical basis of each normal alone takes different axes: they get
 /// one basis. So do two caps 5e-4 rad apart (whose own bases would differ by that much,
-/// a UV step of about 5e-4 across the crack); a cap 1e-2 rad off keeps its own.
+/// a UV step of about 5e-4 across the crack), and a cap of the same plane elsewhere; a
+/// cap 1e-2 rad off keeps its own.
 #[test]
 fn caps_in_nearly_one_plane_share_a_basis_where_the_axis_ties() {
     let n1 = DVec3::new(1.0 - 1.5e-6, 1.0, 0.0).normalize();
@@ -79,13 +80,14 @@ fn caps_in_nearly_one_plane_share_a_basis_where_the_axis_ties() {
         tet_with_cap(DVec3::new(3.0, 0.0, 0.0), z, 11),
         tet_with_cap(DVec3::new(3.0, 0.1, 0.0), -tilted(5e-4), 13),
         tet_with_cap(DVec3::new(6.0, 0.0, 0.0), tilted(1e-2), 15),
+        tet_with_cap(DVec3::new(9.0, 0.0, 0.0), -z, 17),
     ];
     let fragments: Vec<_> = pieces.iter().map(fragment).collect();
     let tags: Vec<Vec<u64>> = pieces.iter().map(|p| p.tags.clone()).collect();
     let bases = cap_bases(&fragments, &tags);
     assert_eq!(
         bases.len(),
-        5,
+        6,
         "one basis per cap tag, none for the surface"
     );
     assert_eq!(bases[&7], bases[&9]);
@@ -96,6 +98,7 @@ fn caps_in_nearly_one_plane_share_a_basis_where_the_axis_ties() {
         "alone, the two would differ"
     );
     assert_eq!(bases[&11], bases[&13]);
+    assert_eq!(bases[&11], bases[&17], "an equal plane elsewhere");
     assert!(bases[&11].n.cross(z).length() < SAME_PLANE_SINE);
     let (own, alone) = (bases[&15], Basis::canonical(tilted(1e-2)));
     assert!(own.u.distance(alone.u) < 1e-12 && own.v.distance(alone.v) < 1e-12);
