@@ -62,7 +62,7 @@ wasm=web/dist/shatter_app_bg.wasm
 before=$(stat -c %s "$wasm")
 wasm-opt -Oz --strip-debug --strip-producers \
     --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
-    --enable-mutable-globals --enable-reference-types --enable-multivalue \
+    --enable-mutable-globals --enable-reference-types --enable-multivalue --enable-simd \
     -o "$wasm.opt" "$wasm"
 mv "$wasm.opt" "$wasm"
 echo "build: wasm-opt -Oz: $before -> $(stat -c %s "$wasm") bytes" >&2

@@ -38,6 +38,10 @@ fn inspect_reports_shells_holes_materials_and_uvs() {
     let v1 = corpus("gltf1/BoxTextured_v1.gltf");
     shatter(dir.path(), &["inspect", v1.to_str().unwrap()])
         .bad_input(&["glTF 1.0 is not supported"]);
+    // A folder is refused as one, not as a file of an unknown format.
+    let folder = corpus("obj/spider");
+    shatter(dir.path(), &["inspect", folder.to_str().unwrap()])
+        .bad_input(&["spider: is a folder: inspect takes one mesh file"]);
 }
 
 #[test]

@@ -20,6 +20,12 @@ pub struct InspectArgs {
 
 /// Runs `shatter inspect`.
 pub fn run(args: &InspectArgs) -> Result<(), CliError> {
+    if args.mesh.is_dir() {
+        return Err(CliError::input(format!(
+            "{}: is a folder: inspect takes one mesh file (.obj, .stl, .gltf or .glb)",
+            args.mesh.display()
+        )));
+    }
     let loaded = shatter_lab::fracture::load_model(&args.mesh)?;
     let report = io::inspect(&loaded);
     let extension = super::fracture_asset::inspect(&args.mesh);
