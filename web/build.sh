@@ -56,8 +56,9 @@ if ! [ "${opt_version:-0}" -ge 116 ] 2>/dev/null; then
     export PATH="$HOME/.cargo/bin:$PATH"
 fi
 # -Oz: binaryen's size passes after LLVM's. The features are those rustc enables by default
-# for wasm32-unknown-unknown (every current browser has them); wasm-opt must be told, or it
-# refuses the module's bulk-memory and reference-types instructions.
+# for wasm32-unknown-unknown, plus SIMD, which .cargo/config.toml turns on (every current
+# browser has them all); wasm-opt must be told, or it refuses the module's bulk-memory,
+# reference-types and SIMD instructions.
 wasm=web/dist/shatter_app_bg.wasm
 before=$(stat -c %s "$wasm")
 wasm-opt -Oz --strip-debug --strip-producers \
