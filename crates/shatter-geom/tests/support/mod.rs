@@ -37,13 +37,17 @@ pub fn uv_at(p: [DVec3; 3], uv: &[[f32; 2]; 3], q: DVec3) -> [f64; 2] {
     lerp(uv, bary(p, q))
 }
 
-/// `2·area / longest²`: 0 for a sliver, about 0.87 for an equilateral triangle.
-pub fn shape_quality(p: [DVec3; 3]) -> f64 {
-    let longest = (p[1] - p[0])
+/// The square of a triangle's longest edge.
+fn longest_squared(p: [DVec3; 3]) -> f64 {
+    (p[1] - p[0])
         .length_squared()
         .max((p[2] - p[1]).length_squared())
-        .max((p[0] - p[2]).length_squared());
-    (p[1] - p[0]).cross(p[2] - p[0]).length() / longest
+        .max((p[0] - p[2]).length_squared())
+}
+
+/// `2·area / longest²`: 0 for a sliver, about 0.87 for an equilateral triangle.
+pub fn shape_quality(p: [DVec3; 3]) -> f64 {
+    (p[1] - p[0]).cross(p[2] - p[0]).length() / longest_squared(p)
 }
 
 /// How many times `eps` a cap triangle's least altitude must be for
@@ -54,11 +58,13 @@ pub const PLANE_SIZE: f64 = 4e3;
 
 /// A triangle's least altitude: twice its area over its longest edge.
 pub fn least_altitude(p: [DVec3; 3]) -> f64 {
-    let longest = (p[1] - p[0])
-        .length()
-        .max((p[2] - p[1]).length())
-        .max((p[0] - p[2]).length());
-    (p[1] - p[0]).cross(p[2] - p[0]).length() / longest
+    (p[1] - p[0]).cross(p[2] - p[0]).length() / longest_squared(p).sqrt()
+}
+
+/// Whether [`interior_uvs_agree`] compares a cap triangle: not a sliver (shape quality
+/// at least 1e-3) and wide enough for `eps` to fix its plane ([`PLANE_SIZE`]).
+fn comparable(p: [DVec3; 3], eps: f64) -> bool {
+    !(shape_quality(p) < 1e-3 || least_altitude(p) < PLANE_SIZE * eps)
 }
 
 /// Interior UVs across bonds: for every bond, every pair of cap triangles of its two
@@ -93,7 +99,7 @@ pub fn interior_uvs_agree(fr: &Fracture, eps: f64, tol: f64, what: &str) -> (usi
         let mut here = 0;
         for ta in caps(fa) {
             let pa = tri(&fa.mesh, ta);
-            if shape_quality(pa) < 1e-3 || least_altitude(pa) < PLANE_SIZE * eps {
+            if !comparable(pa, eps) {
                 continue;
             }
             let na = (pa[1] - pa[0]).cross(pa[2] - pa[0]);
@@ -107,11 +113,7 @@ pub fn interior_uvs_agree(fr: &Fracture, eps: f64, tol: f64, what: &str) -> (usi
                 // Facing each other: opposite normals (not merely within `eps` of one
                 // plane, which any triangles a few `eps` across are).
                 let nb = (pb[1] - pb[0]).cross(pb[2] - pb[0]).normalize_or_zero();
-                if !coplanar
-                    || nb.dot(na) > -(1.0 - 1e-8)
-                    || shape_quality(pb) < 1e-3
-                    || least_altitude(pb) < PLANE_SIZE * eps
-                {
+                if !coplanar || nb.dot(na) > -(1.0 - 1e-8) || !comparable(pb, eps) {
                     continue;
                 }
                 let w = bary(pb, centre);

@@ -145,13 +145,7 @@ pub(crate) fn cap_bases(fragments: &[Fragment], tags: &[Vec<u64>]) -> FastMap<u6
                 continue;
             }
             let [a, b, c] = tri.map(|i| f.mesh.positions[i as usize]);
-            let n = (b - a).cross(c - a);
-            let s = sums.entry(tag).or_insert(DVec3::ZERO);
-            if s.dot(n) < 0.0 {
-                *s -= n;
-            } else {
-                *s += n;
-            }
+            add_turned(sums.entry(tag).or_insert(DVec3::ZERO), (b - a).cross(c - a));
         }
     }
     let mut sums: Vec<(u64, DVec3)> = sums.into_iter().collect();
@@ -159,17 +153,22 @@ pub(crate) fn cap_bases(fragments: &[Fragment], tags: &[Vec<u64>]) -> FastMap<u6
     let group = same_plane_groups(&sums);
     let mut group_sum = vec![DVec3::ZERO; sums.len()];
     for (&(_, n), &g) in sums.iter().zip(&group) {
-        let s = &mut group_sum[g];
-        if s.dot(n) < 0.0 {
-            *s -= n;
-        } else {
-            *s += n;
-        }
+        add_turned(&mut group_sum[g], n);
     }
     sums.iter()
         .zip(&group)
         .map(|(&(tag, _), &g)| (tag, Basis::canonical(group_sum[g])))
         .collect()
+}
+
+/// Adds the normal `n` to the sum `s`, turned to agree with it (one plane's normals
+/// seen from either side add up rather than cancel).
+fn add_turned(s: &mut DVec3, n: DVec3) {
+    if s.dot(n) < 0.0 {
+        *s -= n;
+    } else {
+        *s += n;
+    }
 }
 
 /// Per normal of `sums`, the index of its group's first member: normals parallel up to
