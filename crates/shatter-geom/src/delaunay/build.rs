@@ -8,6 +8,7 @@ use super::order::brio_order;
 use super::output::finish;
 use super::packed::{Narrow, Store, Wide};
 use super::predicates::{MAX_MAGNITUDE, MIN_MAGNITUDE, orient};
+use super::split::{SPLIT_MIN_POINTS, tetrahedralize_split};
 use super::storage::Mesh;
 use super::types::{DelaunayError, Tetrahedralization};
 
@@ -51,6 +52,14 @@ pub(crate) fn tetrahedralize_within(
             distinct: count_distinct(points),
         });
     }
+    // Large inputs on two cores; `narrow_limit` is lowered by tests of the sequential
+    // path alone.
+    if n >= SPLIT_MIN_POINTS
+        && narrow_limit == usize::MAX
+        && let Some(t) = tetrahedralize_split(points)
+    {
+        return Ok(t);
+    }
     let order = brio_order(points);
     let mut pts = Vec::with_capacity(n + 1);
     pts.push([f64::NAN; 3]);
@@ -67,15 +76,17 @@ pub(crate) fn tetrahedralize_within(
     let mut dups: Vec<(u32, u32)> = Vec::new();
     // Narrow records when the points allow it; wide ones from the start, or from the
     // insertion that no longer fitted the narrow ones.
-    let (mut mesh, from) = if n <= Narrow::MAX_POINTS && narrow_limit >= 5 {
-        let mut mesh = Mesh::<Narrow>::new(pts, narrow_limit);
+    let (mut mesh, from) = if n <= <Narrow>::MAX_POINTS && narrow_limit >= 5 {
+        let tets = Narrow::with_capacity(Mesh::<Narrow>::reserve_for(n));
+        let mut mesh = Mesh::new(pts, tets, narrow_limit);
         start(&mut mesh, first);
         match insert_from(&mut mesh, (1, None), first, &mut dups) {
             None => return Ok(finish(mesh, order, &dups)),
             Some(full) => (mesh.into_wide(), full),
         }
     } else {
-        let mut mesh = Mesh::<Wide>::new(pts, usize::MAX);
+        let tets = Wide::with_capacity(Mesh::<Wide>::reserve_for(n));
+        let mut mesh = Mesh::new(pts, tets, usize::MAX);
         start(&mut mesh, first);
         (mesh, (1, None))
     };
@@ -86,7 +97,7 @@ pub(crate) fn tetrahedralize_within(
 }
 
 /// Builds the first tetrahedron from the four points `first`, positively oriented.
-fn start<S: Store>(mesh: &mut Mesh<S>, first: [u32; 4]) {
+pub(super) fn start<S: Store>(mesh: &mut Mesh<S>, first: [u32; 4]) {
     let [a, b, c, d] = first;
     let p = |k: u32| &mesh.pts[k as usize];
     if orient(p(a), p(b), p(c), p(d)) > 0.0 {
@@ -100,7 +111,7 @@ fn start<S: Store>(mesh: &mut Mesh<S>, first: [u32; 4]) {
 /// with the conflicting tetrahedron already found for it; merged duplicates go to `dups`.
 /// Returns the vertex that did not fit the storage, with its conflicting tetrahedron, so
 /// that the insertion resumes exactly where it stopped.
-fn insert_from<S: Store>(
+pub(super) fn insert_from<S: Store>(
     mesh: &mut Mesh<S>,
     (from, found): (u32, Option<u32>),
     first: [u32; 4],
@@ -163,7 +174,7 @@ fn count_distinct(points: &[DVec3]) -> usize {
 
 /// Four affinely independent points, in insertion order: the first point, the first one
 /// distinct from it, the first one off their line and the first one off their plane.
-fn first_simplex(pts: &[[f64; 3]]) -> Option<[u32; 4]> {
+pub(super) fn first_simplex(pts: &[[f64; 3]]) -> Option<[u32; 4]> {
     let n = pts.len();
     let a = 1;
     let b = (2..n).find(|&s| pts[s] != pts[a])?;

@@ -20,6 +20,11 @@
 //! infinite vertex (CGAL style): every hull face carries an infinite tetrahedron, so there
 //! is no inexact bounding box and no special case in the walk or the cavity search.
 //!
+//! From 200,000 points on, the points are split in two halves triangulated at once on two
+//! threads and joined exactly (`split.rs`: the halves' tetrahedra whose circumspheres
+//! stay on their side are kept, the gap between is triangulated again); the result is
+//! the same set of tetrahedra.
+//!
 //! # Storage
 //! One record per tetrahedron: its four vertices (internal ids, `0` = infinite vertex),
 //! two flags ("in the current cavity", "tested, not in conflict") and its face adjacency
@@ -70,6 +75,7 @@ mod order;
 mod output;
 mod packed;
 mod predicates;
+mod split;
 mod storage;
 mod types;
 mod validate;

@@ -35,8 +35,12 @@ impl XorShift {
 
 /// The BRIO order of `points`: a permutation of `0..points.len()`.
 pub(crate) fn brio_order(points: &[DVec3]) -> Vec<u32> {
-    let n = points.len();
-    let mut idx: Vec<u32> = (0..n as u32).collect();
+    brio_order_of(points, (0..points.len() as u32).collect())
+}
+
+/// The BRIO order of the points `idx` of `points`: a permutation of `idx`.
+pub(crate) fn brio_order_of(points: &[DVec3], mut idx: Vec<u32>) -> Vec<u32> {
+    let n = idx.len();
     let mut rng = XorShift::new(0x5EED_DE1A_u64);
     for i in (1..n).rev() {
         let j = (rng.next_u64() % (i as u64 + 1)) as usize;
@@ -44,8 +48,8 @@ pub(crate) fn brio_order(points: &[DVec3]) -> Vec<u32> {
     }
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
-    for p in points {
-        let p = p.to_array();
+    for &i in &idx {
+        let p = points[i as usize].to_array();
         for k in 0..3 {
             lo[k] = lo[k].min(p[k]);
             hi[k] = hi[k].max(p[k]);

@@ -18,69 +18,121 @@ where
     let Mesh { pts, mut tets, .. } = mesh;
     drop(pts);
     let n = order.len();
-    // name[v]: the output index of internal vertex v — the smallest input index at its position.
-    let mut name: Vec<u32> = Vec::with_capacity(n + 1);
-    name.push(u32::MAX);
-    name.extend_from_slice(&order);
-    for &(s, w) in dups {
-        let i = order[s as usize - 1];
-        if i < name[w as usize] {
-            name[w as usize] = i;
-        }
-    }
+    let name = vertex_names(&order, dups);
     let mut representative = vec![0u32; n];
-    for (k, &i) in order.iter().enumerate() {
-        representative[i as usize] = name[k + 1];
-    }
-    for &(s, w) in dups {
-        representative[order[s as usize - 1] as usize] = name[w as usize];
-    }
+    fill_representative(&mut representative, &order, dups, &name);
     drop(order);
-    let duplicates: Vec<[u32; 2]> = representative
-        .iter()
-        .enumerate()
-        .filter(|&(i, &r)| i as u32 != r)
-        .map(|(i, &r)| [i as u32, r])
-        .collect();
-    let unique_points = n - duplicates.len();
+    let (duplicates, unique_points) = duplicates_of(&representative);
 
-    // Rank structure over kept tetrahedra: a bit per tetrahedron, a prefix count per word.
     let total = tets.len();
     let dead = tets.vertex_marker();
-    let words = total.div_ceil(64);
-    let mut bits = vec![0u64; words];
-    for t in 0..total {
-        let v = tets.verts(t as u32);
-        if v[0] != dead && !v.contains(&INF) {
-            bits[t / 64] |= 1 << (t % 64);
-        }
-    }
-    let mut before = Vec::with_capacity(words);
-    let mut acc = 0u32;
-    for w in &bits {
-        before.push(acc);
-        acc += w.count_ones();
-    }
-    let kept = |t: usize| bits[t / 64] >> (t % 64) & 1 != 0;
-    let rank = |t: usize| before[t / 64] + (bits[t / 64] & ((1u64 << (t % 64)) - 1)).count_ones();
+    let keep = Rank::new(total, |t| {
+        let v = tets.verts(t);
+        v[0] != dead && !v.contains(&INF)
+    });
 
     // In place, in the same records: the new index of a kept tetrahedron never exceeds its
     // old one. Vertices become input indices, adjacency fields the neighbour's new index
     // (the marker on the hull).
     let none = tets.adjacency_marker();
     let mut out = 0u32;
-    for t in 0..total {
-        if !kept(t) {
+    for t in 0..total as u32 {
+        if !keep.has(t) {
             continue;
         }
-        let v = tets.verts(t as u32).map(|x| name[x as usize]);
-        let a = tets.adjs(t as u32).map(|x| {
-            let nb = (x >> 2) as usize;
-            if kept(nb) { rank(nb) } else { none }
+        let v = tets.verts(t).map(|x| name[x as usize]);
+        let a = tets.adjs(t).map(|x| {
+            let nb = x >> 2;
+            if keep.has(nb) { keep.rank(nb) } else { none }
         });
         tets.write(out, v, a);
         out += 1;
     }
     tets.truncate(out as usize);
     Tetrahedralization::from_parts(tets.into(), representative, unique_points, duplicates)
+}
+
+/// `name[v]`: the output index of internal vertex `v` (`name[0]` is unused), the smallest
+/// input index at its position. `order[k]` is the input index of internal vertex `k + 1`;
+/// `dups` lists merged duplicates as (internal slot, internal vertex).
+pub(crate) fn vertex_names(order: &[u32], dups: &[(u32, u32)]) -> Vec<u32> {
+    let mut name: Vec<u32> = Vec::with_capacity(order.len() + 1);
+    name.push(u32::MAX);
+    name.extend_from_slice(order);
+    for &(s, w) in dups {
+        let i = order[s as usize - 1];
+        if i < name[w as usize] {
+            name[w as usize] = i;
+        }
+    }
+    name
+}
+
+/// Sets `representative[i]` for every input index `i` that `order` lists.
+pub(crate) fn fill_representative(
+    representative: &mut [u32],
+    order: &[u32],
+    dups: &[(u32, u32)],
+    name: &[u32],
+) {
+    for (k, &i) in order.iter().enumerate() {
+        representative[i as usize] = name[k + 1];
+    }
+    for &(s, w) in dups {
+        representative[order[s as usize - 1] as usize] = name[w as usize];
+    }
+}
+
+/// The merged duplicates `[index, first occurrence]` in increasing index, and the number
+/// of distinct points.
+pub(crate) fn duplicates_of(representative: &[u32]) -> (Vec<[u32; 2]>, usize) {
+    let duplicates: Vec<[u32; 2]> = representative
+        .iter()
+        .enumerate()
+        .filter(|&(i, &r)| i as u32 != r)
+        .map(|(i, &r)| [i as u32, r])
+        .collect();
+    let unique = representative.len() - duplicates.len();
+    (duplicates, unique)
+}
+
+/// A chosen subset of `0..total`, with each member's rank among them: a bit per index and
+/// a prefix count per 64.
+pub(crate) struct Rank {
+    bits: Vec<u64>,
+    before: Vec<u32>,
+}
+
+impl Rank {
+    /// The indices below `total` for which `keep` holds.
+    pub(crate) fn new(total: usize, mut keep: impl FnMut(u32) -> bool) -> Self {
+        let words = total.div_ceil(64);
+        let mut bits = vec![0u64; words];
+        for t in 0..total {
+            if keep(t as u32) {
+                bits[t / 64] |= 1 << (t % 64);
+            }
+        }
+        let mut before = Vec::with_capacity(words);
+        let mut acc = 0u32;
+        for w in &bits {
+            before.push(acc);
+            acc += w.count_ones();
+        }
+        Self { bits, before }
+    }
+
+    /// Whether `t` is a member.
+    #[inline(always)]
+    pub(crate) fn has(&self, t: u32) -> bool {
+        let t = t as usize;
+        self.bits[t / 64] >> (t % 64) & 1 != 0
+    }
+
+    /// Number of members below `t`.
+    #[inline(always)]
+    pub(crate) fn rank(&self, t: u32) -> u32 {
+        let t = t as usize;
+        self.before[t / 64] + (self.bits[t / 64] & ((1u64 << (t % 64)) - 1)).count_ones()
+    }
 }

@@ -98,14 +98,17 @@ const fn build_edge_table() -> [[(u8, u8); 4]; 4] {
 }
 
 impl<S: Store> Mesh<S> {
-    /// Empty storage for `pts` (internal order, with the placeholder at 0).
-    pub(crate) fn new(pts: Vec<[f64; 3]>, limit: usize) -> Self {
-        let n = pts.len();
-        // ~6.77 finite tetrahedra per point for uniform points, plus the hull's infinite
-        // ones. Reserving a little more avoids a reallocation (which may copy) near the end;
-        // pages never written are never resident.
-        let cap = n * 7 + 1024;
-        let tets = S::with_capacity(cap);
+    /// Room to reserve for the tetrahedra of `points` points: ~6.77 finite tetrahedra per
+    /// point for uniform points, plus the hull's infinite ones. Reserving a little more
+    /// avoids a reallocation (which may copy) near the end; pages never written are never
+    /// resident.
+    pub(crate) fn reserve_for(points: usize) -> usize {
+        points * 7 + 1024
+    }
+
+    /// Empty triangulation of `pts` (internal order, with the placeholder at 0) over the
+    /// empty storage `tets`, growing to at most `limit` records.
+    pub(crate) fn new(pts: Vec<[f64; 3]>, tets: S, limit: usize) -> Self {
         Self {
             limit: limit.min(tets.max_len()),
             tets,

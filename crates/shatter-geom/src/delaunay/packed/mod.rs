@@ -24,7 +24,7 @@
 mod narrow;
 mod wide;
 
-pub(crate) use narrow::Narrow;
+pub(crate) use narrow::{Narrow, Slab, Words};
 pub(crate) use wide::Wide;
 
 /// The operations the construction and the result need from a tetrahedron storage.
@@ -33,8 +33,6 @@ pub(crate) use wide::Wide;
 /// marks a free slot); adjacency fields hold `t << 2 | face` during the construction, or a
 /// tetrahedron (or [`Store::adjacency_marker`] on the hull) in a result.
 pub(crate) trait Store: Sized {
-    /// Empty storage with room reserved for `capacity` records.
-    fn with_capacity(capacity: usize) -> Self;
     /// Number of records.
     fn len(&self) -> usize;
     /// Most records the layout can hold.

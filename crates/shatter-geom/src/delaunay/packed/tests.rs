@@ -52,8 +52,8 @@ fn fields_do_not_disturb_each_other<S: Store>(mut p: S, max_v: u32, max_t: u32) 
 
 #[test]
 fn narrow_fields_do_not_disturb_each_other() {
-    let max_t = Narrow::MAX_TETS as u32 - 1;
-    fields_do_not_disturb_each_other(Narrow::with_capacity(3), Narrow::MAX_POINTS as u32, max_t);
+    let max_t = <Narrow>::MAX_TETS as u32 - 1;
+    fields_do_not_disturb_each_other(Narrow::with_capacity(3), <Narrow>::MAX_POINTS as u32, max_t);
 }
 
 #[test]

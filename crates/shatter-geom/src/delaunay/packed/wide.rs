@@ -39,15 +39,18 @@ impl Wide {
     }
 }
 
-impl Store for Wide {
-    fn with_capacity(capacity: usize) -> Self {
+impl Wide {
+    /// Empty records with room reserved for `capacity`.
+    pub(crate) fn with_capacity(capacity: usize) -> Self {
         let capacity = capacity.min(Self::MAX_TETS);
         Self {
             tv: Vec::with_capacity(capacity),
             adj: Vec::with_capacity(capacity),
         }
     }
+}
 
+impl Store for Wide {
     #[inline(always)]
     fn len(&self) -> usize {
         self.tv.len()

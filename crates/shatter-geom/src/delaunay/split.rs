@@ -1,0 +1,731 @@
+//! Delaunay in two halves, one per core, joined exactly.
+//!
+//! 1. **Split.** The points are split across the widest extent of their box, at the
+//!    median of a sample: below it on the left, at or above it on the right, so equal
+//!    points always fall on one side. (Below the axis is called `x`.)
+//! 2. **Halves.** Each half is triangulated on its own (`rayon::join`), in its own part of
+//!    one shared record buffer ([`Slab`]), so that joining them moves records within it
+//!    instead of copying them into a new one.
+//! 3. **Safe tetrahedra.** A tetrahedron of a half whose circumsphere lies strictly on its
+//!    own side of the gap between the halves (left: its sphere ends before the right
+//!    half's least `x`; right: it starts after the left half's greatest) has an empty
+//!    sphere for all the points, so it is a tetrahedron of the whole triangulation. The
+//!    test is in floating point with a margin wider than its rounding, so a sphere it
+//!    cannot decide is unsafe: that only costs work.
+//! 4. **The gap.** Let `S` be the vertices of the unsafe tetrahedra (the infinite ones
+//!    included, so every vertex of a half's hull is in `S`). Every tetrahedron of the whole
+//!    triangulation that is not safe has all its vertices in `S`: for a vertex `a` of the
+//!    left half not on its hull, the centre of an empty sphere through `a` and a right
+//!    point lies in `a`'s Voronoi cell of the left half, and the sphere's right end is a
+//!    convex function of the centre, so it reaches as far at some vertex of that cell,
+//!    that is at the circumcentre of a tetrahedron of `a` that is therefore unsafe (and
+//!    likewise on the right). Those tetrahedra are Delaunay for `S` too, so they are
+//!    tetrahedra of `DT(S)`, triangulated again on its own (the symbolic perturbation
+//!    depends on positions only, so every subset agrees).
+//! 5. **Join.** The safe tetrahedra's faces towards unsafe ones ("walls") are faces of
+//!    `DT(S)` as well. The tetrahedra of `DT(S)` on the far side of a wall, and every one
+//!    reached from them without crossing a wall, fill the gap exactly; the rest of `DT(S)`
+//!    lies under safe tetrahedra and is dropped. Any inconsistency (a wall `DT(S)` does not
+//!    have) gives up, and the caller triangulates sequentially.
+//!
+//! When most points are on their hull (points on a sphere), nearly all would be in `S`:
+//! a sample of the points is split first, and if half of it lands in its gap the caller
+//! triangulates sequentially. A gap of more than a third of the points is refused too, so
+//! triangulating `S` (split again when it is large) always ends.
+//!
+//! The result is the same set of tetrahedra as the sequential insertion's, in another
+//! order, and it depends on the points only, not on the number of threads: one thread
+//! runs both halves in turn.
+
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
+
+use glam::DVec3;
+
+use super::build::{first_simplex, insert_from, start, tetrahedralize};
+use super::order::brio_order_of;
+use super::output::{Rank, duplicates_of, fill_representative, vertex_names};
+use super::packed::{Narrow, Slab, Store, Tets, Words};
+use super::storage::{INF, Mesh};
+use super::types::{FACES, NO_NEIGHBOR, Tetrahedralization};
+
+/// Fewest points for which [`tetrahedralize_split`] is used: below, the join's overhead
+/// outweighs a second core.
+pub(crate) const SPLIT_MIN_POINTS: usize = 200_000;
+
+/// A half after its triangulation: its tetrahedra renumbered in its slab, and what the
+/// join needs.
+struct Half {
+    /// Number of safe tetrahedra, written at the start of the half's slab.
+    safe: u32,
+    /// Faces of safe tetrahedra towards unsafe ones.
+    walls: Vec<Wall>,
+    /// Output (input-index) names of the vertices of unsafe tetrahedra.
+    gap_vertices: Vec<u32>,
+    /// Input index of internal vertex `k + 1`.
+    order: Vec<u32>,
+    /// Merged duplicates (internal slot, internal vertex).
+    dups: Vec<(u32, u32)>,
+}
+
+/// A face of a safe tetrahedron whose neighbour in its half is not safe.
+#[derive(Clone, Copy, Debug)]
+struct Wall {
+    /// The face's vertices (input indices), sorted: the key to find it in `DT(S)`.
+    key: [u32; 3],
+    /// Whether the safe tetrahedron's outward winding is an even permutation of `key`.
+    even: bool,
+    /// Output index of the safe tetrahedron.
+    tet: u32,
+    /// The face (opposite this vertex of the safe tetrahedron).
+    face: u8,
+}
+
+/// The sorted key of a triangle and whether `f` is an even permutation of it.
+fn face_key(f: [u32; 3]) -> ([u32; 3], bool) {
+    let mut k = f;
+    let mut even = true;
+    if k[0] > k[1] {
+        k.swap(0, 1);
+        even = !even;
+    }
+    if k[1] > k[2] {
+        k.swap(1, 2);
+        even = !even;
+    }
+    if k[0] > k[1] {
+        k.swap(0, 1);
+        even = !even;
+    }
+    (k, even)
+}
+
+/// Which side of the split a half is, and the axis split.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Side {
+    /// Below the median: safe spheres end before `bound` (the other half's least
+    /// coordinate).
+    Left(usize),
+    /// At or above it: safe spheres start after `bound` (the other half's greatest).
+    Right(usize),
+}
+
+/// Whether the circumsphere of `p` lies strictly on `side` of the plane `bound`, by a
+/// margin wider than the rounding of the `f64` circumcentre; `false` when unsure.
+fn sphere_within(p: [&[f64; 3]; 4], side: Side, bound: f64) -> bool {
+    let a = DVec3::from_array(*p[0]);
+    let u = DVec3::from_array(*p[1]) - a;
+    let v = DVec3::from_array(*p[2]) - a;
+    let w = DVec3::from_array(*p[3]) - a;
+    let vw = v.cross(w);
+    let den = 2.0 * u.dot(vw);
+    let num =
+        u.length_squared() * vw + v.length_squared() * w.cross(u) + w.length_squared() * u.cross(v);
+    let o = num / den;
+    let r = o.length();
+    if !(den.is_finite() && den != 0.0 && r.is_finite()) {
+        return false;
+    }
+    // Rounding: the differences carry `eps·|p|` each, the products `eps·L` relative; the
+    // centre moves by about (δ)·(L³ + r·L²)/|den|. 64 times that is far beyond it.
+    let eps = f64::EPSILON;
+    let l = u.length().max(v.length()).max(w.length());
+    let mag = p
+        .iter()
+        .flat_map(|q| q.iter())
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let delta = eps * (l + mag);
+    let margin = 64.0 * delta * (l * l * l + r * l * l) / den.abs() + 8.0 * eps * (mag + r);
+    match side {
+        Side::Left(k) => a[k] + o[k] + r + margin < bound,
+        Side::Right(k) => a[k] + o[k] - r - margin > bound,
+    }
+}
+
+/// Triangulates one half (input indices `idx`) in `slab`, classifies its tetrahedra and
+/// renumbers the safe ones to the start of the slab. `None` when the half is degenerate
+/// or does not fit its slab.
+fn half(points: &[DVec3], idx: Vec<u32>, slab: Slab<'_>, side: Side, bound: f64) -> Option<Half> {
+    let order = brio_order_of(points, idx);
+    let mut pts = Vec::with_capacity(order.len() + 1);
+    pts.push([f64::NAN; 3]);
+    pts.extend(order.iter().map(|&i| points[i as usize].to_array()));
+    let first = first_simplex(&pts)?;
+    let mut mesh = Mesh::new(pts, Narrow::in_slab(slab), usize::MAX);
+    start(&mut mesh, first);
+    let mut dups = Vec::new();
+    if insert_from(&mut mesh, (1, None), first, &mut dups).is_some() {
+        return None;
+    }
+    let Mesh { pts, mut tets, .. } = mesh;
+
+    // Safe tetrahedra; a bit per (internal) vertex of the others.
+    let total = tets.len();
+    let dead = tets.vertex_marker();
+    let mut in_gap = vec![0u64; pts.len().div_ceil(64)];
+    let safe = Rank::new(total, |t| {
+        let v = tets.verts(t);
+        if v[0] == dead {
+            return false;
+        }
+        let ok = !v.contains(&INF) && sphere_within(v.map(|k| &pts[k as usize]), side, bound);
+        if !ok {
+            for k in v {
+                in_gap[k as usize / 64] |= 1 << (k % 64);
+            }
+        }
+        ok
+    });
+    drop(pts);
+    let name = vertex_names(&order, &dups);
+    let gap_vertices: Vec<u32> = (1..name.len())
+        .filter(|&k| in_gap[k / 64] >> (k % 64) & 1 != 0)
+        .map(|k| name[k])
+        .collect();
+    drop(in_gap);
+
+    // Renumber in place (a safe tetrahedron's new index never exceeds its old one); the
+    // offset is added at the join. A face towards an unsafe neighbour is a wall, its field
+    // the marker until the join sets it.
+    let none = tets.adjacency_marker();
+    let mut walls = Vec::new();
+    let mut out = 0u32;
+    for t in 0..total as u32 {
+        if !safe.has(t) {
+            continue;
+        }
+        let v = tets.verts(t).map(|x| name[x as usize]);
+        let adj = tets.adjs(t);
+        let mut a = [none; 4];
+        for i in 0..4 {
+            let nb = adj[i] >> 2;
+            if safe.has(nb) {
+                a[i] = safe.rank(nb);
+            } else {
+                let f = FACES[i];
+                let (key, even) = face_key([v[f[0]], v[f[1]], v[f[2]]]);
+                walls.push(Wall {
+                    key,
+                    even,
+                    tet: out,
+                    face: i as u8,
+                });
+            }
+        }
+        tets.write(out, v, a);
+        out += 1;
+    }
+    tets.truncate(out as usize);
+    Some(Half {
+        safe: out,
+        walls,
+        gap_vertices,
+        order,
+        dups,
+    })
+}
+
+/// Both halves of `points`, triangulated, classified and renumbered in one buffer: the
+/// left's safe records at its start, the right's at `cap_l`.
+struct Halves {
+    left: Half,
+    right: Half,
+    buf: Vec<Words>,
+    cap_l: usize,
+}
+
+/// Splits `points` across the widest extent at the median of a sample (the halves need
+/// only be about even) and triangulates both halves at once. `None` when the split is
+/// uneven (below a quarter on one side), a half is degenerate or outgrows its part.
+fn halves(points: &[DVec3]) -> Option<Halves> {
+    let n = points.len();
+    if !(64..=<Narrow>::MAX_POINTS).contains(&n) {
+        return None;
+    }
+    let (lo, hi) = points.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    let extent = hi - lo;
+    let axis = if extent.x >= extent.y && extent.x >= extent.z {
+        0
+    } else if extent.y >= extent.z {
+        1
+    } else {
+        2
+    };
+    let stride = (n / SAMPLE).max(1);
+    let mut sample: Vec<f64> = points.iter().step_by(stride).map(|p| p[axis]).collect();
+    let mid = sample.len() / 2;
+    let (_, &mut m, _) = sample.select_nth_unstable_by(mid, f64::total_cmp);
+    let m = m + 0.0;
+    let on_left = |p: &DVec3| p[axis] < m;
+    let count_l = points.iter().filter(|p| on_left(p)).count();
+    if count_l < n / 4 || n - count_l < n / 4 {
+        return None;
+    }
+    let mut left = Vec::with_capacity(count_l);
+    let mut right = Vec::with_capacity(n - count_l);
+    let (mut left_max, mut right_min) = (f64::NEG_INFINITY, f64::INFINITY);
+    for (i, p) in points.iter().enumerate() {
+        if on_left(p) {
+            left.push(i as u32);
+            left_max = left_max.max(p[axis]);
+        } else {
+            right.push(i as u32);
+            right_min = right_min.min(p[axis]);
+        }
+    }
+    // One buffer of zeroed records (allocated zeroed, so pages become resident only as
+    // they are written), a part per half.
+    let (cap_l, cap_r) = (
+        Mesh::<Narrow>::reserve_for(left.len()),
+        Mesh::<Narrow>::reserve_for(right.len()),
+    );
+    let mut buf: Vec<Words> = vec![[0; 3]; cap_l + cap_r];
+    let (left, right) = {
+        let (bl, br) = buf.split_at_mut(cap_l);
+        let (bl, br) = (bytemuck::cast_slice_mut(bl), bytemuck::cast_slice_mut(br));
+        let (l, r) = rayon::join(
+            || half(points, left, Slab::new(bl), Side::Left(axis), right_min),
+            || half(points, right, Slab::new(br), Side::Right(axis), left_max),
+        );
+        (l?, r?)
+    };
+    Some(Halves {
+        left,
+        right,
+        buf,
+        cap_l,
+    })
+}
+
+/// Whether the split is worth it: a sample of [`GAP_SAMPLE`] points, split the same
+/// way, leaves at most half of itself in the gap. Points mostly on their hull (on a
+/// sphere, say) put nearly all in it, and are triangulated sequentially without paying
+/// for two halves first.
+fn sample_splits(points: &[DVec3]) -> bool {
+    let n = points.len();
+    if n < 4 * GAP_SAMPLE {
+        return true;
+    }
+    let sample: Vec<DVec3> = points.iter().step_by(n / GAP_SAMPLE).copied().collect();
+    halves(&sample).is_some_and(|h| {
+        let gap = h.left.gap_vertices.len() + h.right.gap_vertices.len();
+        Trace::new().lap(&format!("sample gap {gap} of {}", sample.len()));
+        gap * 2 <= sample.len()
+    })
+}
+
+/// Points in the sample that [`sample_splits`] triangulates.
+const GAP_SAMPLE: usize = 8192;
+
+/// The Delaunay tetrahedralization of `points` (already checked by the caller) built as
+/// two halves on two threads, or `None` when the split does not apply (too uneven a
+/// split, a degenerate half, a half beyond its reservation, or a join that does not add
+/// up); the caller then triangulates sequentially.
+pub(crate) fn tetrahedralize_split(points: &[DVec3]) -> Option<Tetrahedralization> {
+    let n = points.len();
+    let trace = Trace::new();
+    if !sample_splits(points) {
+        trace.lap("the sample's gap is too wide");
+        return None;
+    }
+    trace.lap("sample split");
+    let Halves {
+        left: mut hl,
+        right: mut hr,
+        buf,
+        cap_l,
+    } = halves(points)?;
+    trace.lap("halves");
+    // At most a third in the gap, so that triangulating it (split again if large) ends.
+    if (hl.gap_vertices.len() + hr.gap_vertices.len()) * 3 > n {
+        return None;
+    }
+
+    // 4. DT(S), while the right half's records move behind the left's and the points get
+    // their names.
+    let mut gap: Vec<u32> = std::mem::take(&mut hl.gap_vertices);
+    gap.extend_from_slice(&hr.gap_vertices);
+    hr.gap_vertices = Vec::new();
+    let (safe_l, safe_r) = (hl.safe, hr.safe);
+    let names = [
+        (std::mem::take(&mut hl.order), std::mem::take(&mut hl.dups)),
+        (std::mem::take(&mut hr.order), std::mem::take(&mut hr.dups)),
+    ];
+    let (dts, (mut recs, representative)) = rayon::join(
+        || {
+            let gap_pts: Vec<DVec3> = gap.iter().map(|&i| points[i as usize]).collect();
+            tetrahedralize(&gap_pts)
+        },
+        || {
+            // Never upwards, so in one forward pass; neighbours shift by the left's count.
+            let mut recs = Narrow::from_records(buf);
+            let none = recs.adjacency_marker();
+            for t in 0..safe_r {
+                let from = cap_l as u32 + t;
+                let a = recs
+                    .adjs(from)
+                    .map(|x| if x == none { none } else { x + safe_l });
+                let v = recs.verts(from);
+                recs.write(safe_l + t, v, a);
+            }
+            recs.truncate((safe_l + safe_r) as usize);
+            let mut representative = vec![0u32; n];
+            for (order, dups) in names {
+                let name = vertex_names(&order, &dups);
+                fill_representative(&mut representative, &order, &dups, &name);
+            }
+            (recs, representative)
+        },
+    );
+    let dts = dts.ok()?;
+    debug_assert!(
+        dts.duplicates.is_empty(),
+        "the halves merged their duplicates"
+    );
+    let (duplicates, unique_points) = duplicates_of(&representative);
+    trace.lap("gap triangulated");
+
+    // 5. The walls' far sides in DT(S), and the gap filled from them.
+    let mut walls = hl.walls;
+    for mut w in hr.walls {
+        w.tet += safe_l;
+        walls.push(w);
+    }
+    let join = Join::new(&dts, &gap, &walls, n)?;
+    trace.lap("walls matched");
+
+    // The gap's tetrahedra behind the safe ones; then the walls' other sides.
+    let none = recs.adjacency_marker();
+    let base = safe_l + safe_r;
+    for g in 0..dts.len() as u32 {
+        if !join.fill.has(g) {
+            continue;
+        }
+        let v = dts.tetrahedron(g as usize).map(|k| gap[k as usize]);
+        let nb = dts.neighbors(g as usize);
+        let mut a = [none; 4];
+        for j in 0..4 {
+            if let Some(w) = join.wall_at(g, j) {
+                a[j] = walls[w as usize].tet;
+            } else if nb[j] != NO_NEIGHBOR {
+                if !join.fill.has(nb[j]) {
+                    return None;
+                }
+                a[j] = base + join.fill.rank(nb[j]);
+            }
+        }
+        let t = recs.push();
+        recs.write(t, v, a);
+    }
+    for (w, &g) in walls.iter().zip(&join.across) {
+        // Nothing across: a face of the hull of all the points.
+        let a = if g == SAME_SIDE {
+            none
+        } else {
+            base + join.fill.rank(g)
+        };
+        recs.set_adj(w.tet, w.face as usize, a);
+    }
+    trace.lap("written");
+    Some(Tetrahedralization::from_parts(
+        Tets::Narrow(recs),
+        representative,
+        unique_points,
+        duplicates,
+    ))
+}
+
+/// Points in the sample whose median splits the points.
+const SAMPLE: usize = 4095;
+
+/// `Join::across` of a wall that `DT(S)` has only on its safe tetrahedron's side.
+const SAME_SIDE: u32 = u32::MAX - 1;
+/// `Join::across` of a wall not (yet) found in `DT(S)`.
+const UNMATCHED: u32 = u32::MAX;
+
+/// The walls found in `DT(S)` and the tetrahedra of `DT(S)` that fill the gap.
+struct Join {
+    /// For every wall: the tetrahedron of `DT(S)` across it, or [`SAME_SIDE`].
+    across: Vec<u32>,
+    /// The gap's tetrahedra of `DT(S)`.
+    fill: Rank,
+    /// `(tetrahedron of DT(S) << 2 | face, wall)` for every wall face of a gap tetrahedron,
+    /// sorted.
+    wall_faces: Vec<(u32, u32)>,
+}
+
+impl Join {
+    /// Finds every wall in `dts` (over the points `gap`, of `n` input points), then floods
+    /// the gap from the walls' far sides without crossing a wall. `None` when a wall is
+    /// missing from `dts` or found twice on its far side.
+    fn new(dts: &Tetrahedralization, gap: &[u32], walls: &[Wall], n: usize) -> Option<Self> {
+        // A bit per input point on a wall: most faces of DT(S) are not looked up.
+        let mut wall_bits = vec![0u64; n.div_ceil(64)];
+        for w in walls {
+            for g in w.key {
+                wall_bits[g as usize / 64] |= 1 << (g % 64);
+            }
+        }
+        let on_wall: Vec<bool> = gap
+            .iter()
+            .map(|&g| wall_bits[g as usize / 64] >> (g % 64) & 1 != 0)
+            .collect();
+        drop(wall_bits);
+        let index: HashMap<u64, u32, BuildHasherDefault<KeyHasher>> = walls
+            .iter()
+            .enumerate()
+            .map(|(i, w)| (pack(w.key), i as u32))
+            .collect();
+        if index.len() != walls.len() {
+            // Two safe tetrahedra on one wall face: not a triangulation.
+            return None;
+        }
+        let m = dts.len();
+        let mut across = vec![UNMATCHED; walls.len()];
+        let mut is_gap = vec![false; m];
+        let mut walled = vec![0u8; m];
+        let mut wall_faces = Vec::new();
+        let mut stack: Vec<u32> = Vec::new();
+        for g in 0..m {
+            let tv = dts.tetrahedron(g);
+            for (j, f) in FACES.iter().enumerate() {
+                if !f.iter().all(|&k| on_wall[tv[k] as usize]) {
+                    continue;
+                }
+                let (key, even) = face_key(f.map(|k| gap[tv[k] as usize]));
+                let Some(&w) = index.get(&pack(key)) else {
+                    continue;
+                };
+                walled[g] |= 1 << j;
+                if even == walls[w as usize].even {
+                    // On the safe tetrahedron's side: `g` lies under it.
+                    if across[w as usize] == UNMATCHED {
+                        across[w as usize] = SAME_SIDE;
+                    }
+                } else {
+                    if across[w as usize] < SAME_SIDE {
+                        return None;
+                    }
+                    across[w as usize] = g as u32;
+                    wall_faces.push(((g as u32) << 2 | j as u32, w));
+                    if !is_gap[g] {
+                        is_gap[g] = true;
+                        stack.push(g as u32);
+                    }
+                }
+            }
+        }
+        if across.contains(&UNMATCHED) {
+            return None;
+        }
+        while let Some(g) = stack.pop() {
+            for (j, h) in dts.neighbors(g as usize).into_iter().enumerate() {
+                if walled[g as usize] >> j & 1 != 0 || h == NO_NEIGHBOR {
+                    continue;
+                }
+                let h = h as usize;
+                if !is_gap[h] {
+                    is_gap[h] = true;
+                    stack.push(h as u32);
+                }
+            }
+        }
+        wall_faces.sort_unstable();
+        Some(Self {
+            across,
+            fill: Rank::new(m, |g| is_gap[g as usize]),
+            wall_faces,
+        })
+    }
+
+    /// The wall on face `j` of gap tetrahedron `g`, if it is one.
+    fn wall_at(&self, g: u32, j: usize) -> Option<u32> {
+        let key = g << 2 | j as u32;
+        self.wall_faces
+            .binary_search_by_key(&key, |&(k, _)| k)
+            .ok()
+            .map(|at| self.wall_faces[at].1)
+    }
+}
+
+/// Three vertex ids below 2^21 (the narrow layout's) in one `u64`.
+fn pack(k: [u32; 3]) -> u64 {
+    (k[0] as u64) << 42 | (k[1] as u64) << 21 | k[2] as u64
+}
+
+/// Multiplicative hashing of [`pack`]ed keys (Fibonacci hashing): the keys are already
+/// well spread, and SipHash would cost more than the lookups.
+#[derive(Default)]
+struct KeyHasher(u64);
+
+impl Hasher for KeyHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0.rotate_left(8) ^ b as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        }
+    }
+    fn write_u64(&mut self, k: u64) {
+        self.0 = (k ^ k >> 29).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    }
+}
+
+/// Phase times and the resident memory on standard error when `SHATTER_SPLIT_TRACE` is
+/// set (for tuning; nothing reads it otherwise).
+struct Trace(Option<std::time::Instant>);
+
+impl Trace {
+    fn new() -> Self {
+        Self(std::env::var_os("SHATTER_SPLIT_TRACE").map(|_| std::time::Instant::now()))
+    }
+
+    fn lap(&self, what: &str) {
+        if let Some(t0) = self.0 {
+            let rss = std::fs::read_to_string("/proc/self/status")
+                .ok()
+                .map(|s| {
+                    s.lines()
+                        .filter(|l| l.starts_with("VmHWM") || l.starts_with("VmRSS"))
+                        .collect::<Vec<_>>()
+                        .join(" ")
+                })
+                .unwrap_or_default();
+            eprintln!(
+                "split: {what} at {:.1} ms, {rss}",
+                t0.elapsed().as_secs_f64() * 1e3
+            );
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::delaunay::build::tetrahedralize_within;
+    use crate::sampling::{Distribution, sample};
+
+    /// Every tetrahedron as its sorted vertices, sorted.
+    fn tet_set(t: &Tetrahedralization) -> Vec<[u32; 4]> {
+        let mut v: Vec<[u32; 4]> = t
+            .tetrahedra()
+            .map(|mut q| {
+                q.sort_unstable();
+                q
+            })
+            .collect();
+        v.sort_unstable();
+        v
+    }
+
+    /// The split builds exactly the sequential triangulation (validated on its own) on
+    /// uniform, clustered, cospherical and lattice points and with duplicates, and it
+    /// does apply to each of them.
+    #[test]
+    fn the_split_builds_the_sequential_triangulation() {
+        let mut sets: Vec<(&str, Vec<DVec3>)> = [
+            ("uniform", Distribution::Uniform),
+            ("grid", Distribution::Grid),
+            ("gaussian", Distribution::Gaussian),
+        ]
+        .into_iter()
+        .flat_map(|(name, d)| [(name, sample(d, 12_000, 3)), (name, sample(d, 40_000, 5))])
+        .collect();
+        let mut dups = sample(Distribution::Ball, 6000, 2);
+        dups.extend_from_within(..2500);
+        sets.push(("duplicates", dups));
+        for (name, p) in &sets {
+            let split = tetrahedralize_split(p)
+                .unwrap_or_else(|| panic!("{name} ({} points): the split gave up", p.len()));
+            split
+                .validate(p)
+                .unwrap_or_else(|e| panic!("{name} ({} points): {e}", p.len()));
+            // Any limit but `usize::MAX` keeps the sequential path.
+            let seq = tetrahedralize_within(p, usize::MAX - 1).expect("sequential");
+            assert_eq!(
+                tet_set(&split),
+                tet_set(&seq),
+                "{name} ({} points)",
+                p.len()
+            );
+            assert_eq!(split.representative, seq.representative, "{name}");
+            assert_eq!(split.duplicates, seq.duplicates, "{name}");
+            assert_eq!(split.unique_points, seq.unique_points, "{name}");
+        }
+    }
+
+    /// The public call takes the split from [`SPLIT_MIN_POINTS`] on, and its result is
+    /// exactly Delaunay.
+    #[test]
+    fn a_large_input_is_split_and_exact() {
+        let p = sample(Distribution::Uniform, SPLIT_MIN_POINTS + 1000, 9);
+        let t = tetrahedralize(&p).expect("uniform points");
+        let split = tetrahedralize_split(&p).expect("the split applies");
+        // The same tetrahedra in the same order: the split's, not the sequential path's.
+        assert!(t.tetrahedra().eq(split.tetrahedra()));
+        t.validate(&p).expect("Delaunay");
+        let seq = tetrahedralize_within(&p, usize::MAX - 1).expect("sequential");
+        assert_eq!(tet_set(&t), tet_set(&seq));
+    }
+
+    /// Points on a sphere are all on both halves' hulls, so all would be in the gap: the
+    /// split declines them, from its sample when there are enough points for one.
+    #[test]
+    fn points_on_a_sphere_are_not_split() {
+        for n in [3000, 40_000] {
+            let p = sample(Distribution::Sphere, n, 4);
+            assert!(halves(&p).is_some(), "{n}: the halves themselves build");
+            assert!(tetrahedralize_split(&p).is_none(), "{n}");
+        }
+        let p = sample(Distribution::Sphere, 40_000, 4);
+        assert!(!sample_splits(&p));
+        assert!(sample_splits(&sample(Distribution::Uniform, 40_000, 4)));
+    }
+
+    /// A split that cannot be even (most points share the median x) is declined.
+    #[test]
+    fn an_uneven_split_is_declined() {
+        // x is the widest extent, and most points share one x.
+        let mut p = sample(Distribution::Uniform, 3000, 1);
+        for (k, q) in p.iter_mut().enumerate() {
+            q.x = if k < 2400 { 2.5 } else { q.x * 10.0 };
+        }
+        assert!(tetrahedralize_split(&p).is_none());
+        tetrahedralize(&p)
+            .expect("sequential")
+            .validate(&p)
+            .expect("Delaunay");
+    }
+
+    /// The sphere test keeps its promise: a sphere it calls safe ends strictly before the
+    /// bound, checked with the exact insphere test against points at the bound.
+    #[test]
+    fn a_safe_sphere_is_strictly_on_its_side() {
+        let q = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        let p = [&q[0], &q[1], &q[2], &q[3]];
+        // Circumcentre (0.5, 0.5, 0.5), radius sqrt(0.75) ≈ 0.866: x in [-0.366, 1.366].
+        assert!(sphere_within(p, Side::Left(0), 1.367));
+        assert!(!sphere_within(p, Side::Left(0), 1.366));
+        assert!(!sphere_within(p, Side::Left(0), 0.5 + 0.75f64.sqrt()));
+        assert!(sphere_within(p, Side::Right(0), -0.367));
+        assert!(!sphere_within(p, Side::Right(0), -0.366));
+        // A flat tetrahedron has no sphere to trust.
+        let flat = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [1.0, 1.0, 0.0],
+        ];
+        let f = [&flat[0], &flat[1], &flat[2], &flat[3]];
+        assert!(!sphere_within(f, Side::Left(0), 1e9));
+    }
+}
