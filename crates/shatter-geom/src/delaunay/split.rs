@@ -7,11 +7,12 @@
 //!    one shared record buffer ([`Slab`]), so that joining them moves records within it
 //!    instead of copying them into a new one.
 //! 3. **Safe tetrahedra.** A tetrahedron of a half whose circumsphere lies strictly on its
-//!    own side of the gap between the halves (left: its sphere ends before the right
-//!    half's least `x`; right: it starts after the left half's greatest) has an empty
-//!    sphere for all the points, so it is a tetrahedron of the whole triangulation. The
-//!    test is in floating point with a margin wider than its rounding, so a sphere it
-//!    cannot decide is unsafe: that only costs work.
+//!    own side of the plane halfway between the halves (between the left half's greatest
+//!    `x` and the right half's least) has an empty sphere for all the points, so it is a
+//!    tetrahedron of the whole triangulation. The test is in floating point with a margin
+//!    wider than its rounding, so a sphere it cannot decide is unsafe: that only costs
+//!    work. The unsafe ones are found by a search from the half's hull, which tests only
+//!    them and their neighbours (see `half`).
 //! 4. **The gap.** Let `S` be the vertices of the unsafe tetrahedra (the infinite ones
 //!    included, so every vertex of a half's hull is in `S`). Every tetrahedron of the whole
 //!    triangulation that is not safe has all its vertices in `S`: for a vertex `a` of the
@@ -46,7 +47,7 @@ use super::build::{first_simplex, insert_from, start, tetrahedralize};
 use super::order::brio_order_of;
 use super::output::{Rank, duplicates_of, fill_representative, vertex_names};
 use super::packed::{Narrow, Slab, Store, Tets, Words};
-use super::storage::{INF, Mesh};
+use super::storage::{FLAGS, INF, MARK, Mesh, SEEN};
 use super::types::{FACES, NO_NEIGHBOR, Tetrahedralization};
 
 /// Fewest points for which [`tetrahedralize_split`] is used: below, the join's overhead
@@ -103,39 +104,39 @@ fn face_key(f: [u32; 3]) -> ([u32; 3], bool) {
 /// Which side of the split a half is, and the axis split.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 enum Side {
-    /// Below the median: safe spheres end before `bound` (the other half's least
-    /// coordinate).
+    /// Below the median: safe spheres end before the bound.
     Left(usize),
-    /// At or above it: safe spheres start after `bound` (the other half's greatest).
+    /// At or above it: safe spheres start after the bound.
     Right(usize),
 }
 
 /// Whether the circumsphere of `p` lies strictly on `side` of the plane `bound`, by a
 /// margin wider than the rounding of the `f64` circumcentre; `false` when unsure.
 fn sphere_within(p: [&[f64; 3]; 4], side: Side, bound: f64) -> bool {
-    let a = DVec3::from_array(*p[0]);
-    let u = DVec3::from_array(*p[1]) - a;
-    let v = DVec3::from_array(*p[2]) - a;
-    let w = DVec3::from_array(*p[3]) - a;
+    let q = p.map(|q| DVec3::from_array(*q));
+    let a = q[0];
+    let (u, v, w) = (q[1] - a, q[2] - a, q[3] - a);
+    let (uu, vv, ww) = (u.length_squared(), v.length_squared(), w.length_squared());
     let vw = v.cross(w);
     let den = 2.0 * u.dot(vw);
-    let num =
-        u.length_squared() * vw + v.length_squared() * w.cross(u) + w.length_squared() * u.cross(v);
-    let o = num / den;
+    let inv = 1.0 / den;
+    let o = (uu * vw + vv * w.cross(u) + ww * u.cross(v)) * inv;
     let r = o.length();
-    if !(den.is_finite() && den != 0.0 && r.is_finite()) {
+    if !(inv.is_finite() && r.is_finite()) {
         return false;
     }
     // Rounding: the differences carry `eps·|p|` each, the products `eps·L` relative; the
     // centre moves by about (δ)·(L³ + r·L²)/|den|. 64 times that is far beyond it.
     let eps = f64::EPSILON;
-    let l = u.length().max(v.length()).max(w.length());
-    let mag = p
-        .iter()
-        .flat_map(|q| q.iter())
-        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let l = uu.max(vv).max(ww).sqrt();
+    let mag = a
+        .abs()
+        .max(q[1].abs())
+        .max(q[2].abs())
+        .max(q[3].abs())
+        .max_element();
     let delta = eps * (l + mag);
-    let margin = 64.0 * delta * (l * l * l + r * l * l) / den.abs() + 8.0 * eps * (mag + r);
+    let margin = 64.0 * delta * (l * l * (l + r)) * inv.abs() + 8.0 * eps * (mag + r);
     match side {
         Side::Left(k) => a[k] + o[k] + r + margin < bound,
         Side::Right(k) => a[k] + o[k] - r - margin > bound,
@@ -159,22 +160,43 @@ fn half(points: &[DVec3], idx: Vec<u32>, slab: Slab<'_>, side: Side, bound: f64)
     }
     let Mesh { pts, mut tets, .. } = mesh;
 
-    // Safe tetrahedra; a bit per (internal) vertex of the others.
+    // Unsafe tetrahedra, flagged MARK, by a search from the hull: only they and their
+    // neighbours are tested, not every tetrahedron. It finds them all because `bound`
+    // lies strictly between the halves, outside this half's hull: a tetrahedron whose
+    // sphere reaches past it contains a point `p` beyond it, and `p`'s conflict region
+    // (every tetrahedron whose sphere contains `p`, and the infinite ones whose hull face
+    // `p` sees) is connected, holds an infinite tetrahedron, and none of its spheres is
+    // certified on this side.
     let total = tets.len();
     let dead = tets.vertex_marker();
-    let mut in_gap = vec![0u64; pts.len().div_ceil(64)];
-    let safe = Rank::new(total, |t| {
+    let live_infinite = |t: u32| {
         let v = tets.verts(t);
-        if v[0] == dead {
-            return false;
+        v[0] != dead && v.contains(&INF)
+    };
+    let first_infinite = (0..total as u32).find(|&t| live_infinite(t))?;
+    let mut in_gap = vec![0u64; pts.len().div_ceil(64)];
+    let mut stack = vec![first_infinite];
+    tets.add_flags(first_infinite, MARK);
+    while let Some(t) = stack.pop() {
+        for k in tets.verts(t) {
+            in_gap[k as usize / 64] |= 1 << (k % 64);
         }
-        let ok = !v.contains(&INF) && sphere_within(v.map(|k| &pts[k as usize]), side, bound);
-        if !ok {
-            for k in v {
-                in_gap[k as usize / 64] |= 1 << (k % 64);
+        for a in tets.adjs(t) {
+            let nb = a >> 2;
+            if tets.flags(nb) & FLAGS != 0 {
+                continue;
+            }
+            let v = tets.verts(nb);
+            if v.contains(&INF) || !sphere_within(v.map(|k| &pts[k as usize]), side, bound) {
+                tets.add_flags(nb, MARK);
+                stack.push(nb);
+            } else {
+                tets.add_flags(nb, SEEN);
             }
         }
-        ok
+    }
+    let safe = Rank::new(total, |t| {
+        tets.verts(t)[0] != dead && tets.flags(t) & MARK == 0
     });
     drop(pts);
     let name = vertex_names(&order, &dups);
@@ -276,6 +298,12 @@ fn halves(points: &[DVec3]) -> Option<Halves> {
             right_min = right_min.min(p[axis]);
         }
     }
+    // Safe spheres end (left) or start (right) strictly before a plane strictly between
+    // the halves, outside both hulls.
+    let bound = 0.5 * (left_max + right_min);
+    if !(left_max < bound && bound < right_min) {
+        return None;
+    }
     // One buffer of zeroed records (allocated zeroed, so pages become resident only as
     // they are written), a part per half.
     let (cap_l, cap_r) = (
@@ -287,8 +315,8 @@ fn halves(points: &[DVec3]) -> Option<Halves> {
         let (bl, br) = buf.split_at_mut(cap_l);
         let (bl, br) = (bytemuck::cast_slice_mut(bl), bytemuck::cast_slice_mut(br));
         let (l, r) = rayon::join(
-            || half(points, left, Slab::new(bl), Side::Left(axis), right_min),
-            || half(points, right, Slab::new(br), Side::Right(axis), left_max),
+            || half(points, left, Slab::new(bl), Side::Left(axis), bound),
+            || half(points, right, Slab::new(br), Side::Right(axis), bound),
         );
         (l?, r?)
     };
