@@ -76,6 +76,7 @@ mod order;
 mod output;
 mod packed;
 mod predicates;
+mod sequential;
 mod split;
 mod storage;
 mod types;

@@ -43,10 +43,10 @@ use std::hash::{BuildHasherDefault, Hasher};
 
 use glam::DVec3;
 
-use super::build::{first_simplex, insert_from, start, tetrahedralize};
 use super::order::brio_order_of;
 use super::output::{Rank, duplicates_of, fill_representative, vertex_names};
 use super::packed::{Narrow, Slab, Store, Tets, Words};
+use super::sequential::{first_simplex, insert_from, sequential, start};
 use super::storage::{FLAGS, INF, MARK, Mesh, SEEN};
 use super::types::{FACES, NO_NEIGHBOR, Tetrahedralization};
 
@@ -385,7 +385,7 @@ pub(crate) fn tetrahedralize_split(points: &[DVec3]) -> Option<Tetrahedralizatio
     let (dts, (mut recs, representative)) = rayon::join(
         || {
             let gap_pts: Vec<DVec3> = gap.iter().map(|&i| points[i as usize]).collect();
-            tetrahedralize(&gap_pts)
+            sequential(&gap_pts, usize::MAX)
         },
         || {
             // Never upwards, so in one forward pass; neighbours shift by the left's count.
@@ -634,7 +634,6 @@ impl Trace {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::delaunay::build::tetrahedralize_within;
     use crate::sampling::{Distribution, sample};
 
     /// Every tetrahedron as its sorted vertices, sorted.
@@ -672,8 +671,7 @@ mod tests {
             split
                 .validate(p)
                 .unwrap_or_else(|e| panic!("{name} ({} points): {e}", p.len()));
-            // Any limit but `usize::MAX` keeps the sequential path.
-            let seq = tetrahedralize_within(p, usize::MAX - 1).expect("sequential");
+            let seq = sequential(p, usize::MAX).expect("sequential");
             assert_eq!(
                 tet_set(&split),
                 tet_set(&seq),
@@ -691,12 +689,12 @@ mod tests {
     #[test]
     fn a_large_input_is_split_and_exact() {
         let p = sample(Distribution::Uniform, SPLIT_MIN_POINTS + 1000, 9);
-        let t = tetrahedralize(&p).expect("uniform points");
+        let t = crate::delaunay::tetrahedralize(&p).expect("uniform points");
         let split = tetrahedralize_split(&p).expect("the split applies");
         // The same tetrahedra in the same order: the split's, not the sequential path's.
         assert!(t.tetrahedra().eq(split.tetrahedra()));
         t.validate(&p).expect("Delaunay");
-        let seq = tetrahedralize_within(&p, usize::MAX - 1).expect("sequential");
+        let seq = sequential(&p, usize::MAX).expect("sequential");
         assert_eq!(tet_set(&t), tet_set(&seq));
     }
 
@@ -723,7 +721,7 @@ mod tests {
             q.x = if k < 2400 { 2.5 } else { q.x * 10.0 };
         }
         assert!(tetrahedralize_split(&p).is_none());
-        tetrahedralize(&p)
+        sequential(&p, usize::MAX)
             .expect("sequential")
             .validate(&p)
             .expect("Delaunay");
