@@ -38,9 +38,6 @@
 //! order, and it depends on the points only, not on the number of threads: one thread
 //! runs both halves in turn.
 
-use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
-
 use glam::DVec3;
 
 use super::order::brio_order_of;
@@ -49,6 +46,7 @@ use super::packed::{Narrow, Slab, Store, Tets, Words};
 use super::sequential::{first_simplex, insert_from, sequential, start};
 use super::storage::{FLAGS, INF, MARK, Mesh, SEEN};
 use super::types::{FACES, NO_NEIGHBOR, Tetrahedralization};
+use crate::util::{FastMap, bounds};
 
 /// Fewest points for which [`tetrahedralize_split`] is used: below, the join's overhead
 /// outweighs a second core.
@@ -264,10 +262,7 @@ fn halves(points: &[DVec3]) -> Option<Halves> {
     if !(64..=<Narrow>::MAX_POINTS).contains(&n) {
         return None;
     }
-    let (lo, hi) = points.iter().fold(
-        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-    );
+    let (lo, hi) = bounds(points);
     let extent = hi - lo;
     let axis = if extent.x >= extent.y && extent.x >= extent.z {
         0
@@ -340,7 +335,6 @@ fn sample_splits(points: &[DVec3]) -> bool {
     let sample: Vec<DVec3> = points.iter().step_by(n / GAP_SAMPLE).copied().collect();
     halves(&sample).is_some_and(|h| {
         let gap = h.left.gap_vertices.len() + h.right.gap_vertices.len();
-        Trace::new().lap(&format!("sample gap {gap} of {}", sample.len()));
         gap * 2 <= sample.len()
     })
 }
@@ -354,19 +348,15 @@ const GAP_SAMPLE: usize = 8192;
 /// up); the caller then triangulates sequentially.
 pub(crate) fn tetrahedralize_split(points: &[DVec3]) -> Option<Tetrahedralization> {
     let n = points.len();
-    let trace = Trace::new();
     if !sample_splits(points) {
-        trace.lap("the sample's gap is too wide");
         return None;
     }
-    trace.lap("sample split");
     let Halves {
         left: mut hl,
         right: mut hr,
         buf,
         cap_l,
     } = halves(points)?;
-    trace.lap("halves");
     // At most a third in the gap, so that triangulating it (split again if large) ends.
     if (hl.gap_vertices.len() + hr.gap_vertices.len()) * 3 > n {
         return None;
@@ -414,7 +404,6 @@ pub(crate) fn tetrahedralize_split(points: &[DVec3]) -> Option<Tetrahedralizatio
         "the halves merged their duplicates"
     );
     let (duplicates, unique_points) = duplicates_of(&representative);
-    trace.lap("gap triangulated");
 
     // 5. The walls' far sides in DT(S), and the gap filled from them.
     let mut walls = hl.walls;
@@ -423,7 +412,6 @@ pub(crate) fn tetrahedralize_split(points: &[DVec3]) -> Option<Tetrahedralizatio
         walls.push(w);
     }
     let join = Join::new(&dts, &gap, &walls, n)?;
-    trace.lap("walls matched");
 
     // The gap's tetrahedra behind the safe ones; then the walls' other sides.
     let none = recs.adjacency_marker();
@@ -457,7 +445,6 @@ pub(crate) fn tetrahedralize_split(points: &[DVec3]) -> Option<Tetrahedralizatio
         };
         recs.set_adj(w.tet, w.face as usize, a);
     }
-    trace.lap("written");
     Some(Tetrahedralization::from_parts(
         Tets::Narrow(recs),
         representative,
@@ -502,7 +489,7 @@ impl Join {
             .map(|&g| wall_bits[g as usize / 64] >> (g % 64) & 1 != 0)
             .collect();
         drop(wall_bits);
-        let index: HashMap<u64, u32, BuildHasherDefault<KeyHasher>> = walls
+        let index: FastMap<u64, u32> = walls
             .iter()
             .enumerate()
             .map(|(i, w)| (pack(w.key), i as u32))
@@ -582,53 +569,6 @@ impl Join {
 /// Three vertex ids below 2^21 (the narrow layout's) in one `u64`.
 fn pack(k: [u32; 3]) -> u64 {
     (k[0] as u64) << 42 | (k[1] as u64) << 21 | k[2] as u64
-}
-
-/// Multiplicative hashing of [`pack`]ed keys (Fibonacci hashing): the keys are already
-/// well spread, and SipHash would cost more than the lookups.
-#[derive(Default)]
-struct KeyHasher(u64);
-
-impl Hasher for KeyHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.0 = (self.0.rotate_left(8) ^ b as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
-        }
-    }
-    fn write_u64(&mut self, k: u64) {
-        self.0 = (k ^ k >> 29).wrapping_mul(0x9E37_79B9_7F4A_7C15);
-    }
-}
-
-/// Phase times and the resident memory on standard error when `SHATTER_SPLIT_TRACE` is
-/// set (for tuning; nothing reads it otherwise).
-struct Trace(Option<std::time::Instant>);
-
-impl Trace {
-    fn new() -> Self {
-        Self(std::env::var_os("SHATTER_SPLIT_TRACE").map(|_| std::time::Instant::now()))
-    }
-
-    fn lap(&self, what: &str) {
-        if let Some(t0) = self.0 {
-            let rss = std::fs::read_to_string("/proc/self/status")
-                .ok()
-                .map(|s| {
-                    s.lines()
-                        .filter(|l| l.starts_with("VmHWM") || l.starts_with("VmRSS"))
-                        .collect::<Vec<_>>()
-                        .join(" ")
-                })
-                .unwrap_or_default();
-            eprintln!(
-                "split: {what} at {:.1} ms, {rss}",
-                t0.elapsed().as_secs_f64() * 1e3
-            );
-        }
-    }
 }
 
 #[cfg(test)]
