@@ -608,6 +608,13 @@ mod tests {
         let mut dups = sample(Distribution::Ball, 6000, 2);
         dups.extend_from_within(..2500);
         sets.push(("duplicates", dups));
+        // A fifth of the points on one plane across the widest axis, where the median
+        // falls: the right half's least x is that plane, and many spheres touch it.
+        let mut plane = sample(Distribution::Uniform, 20_000, 6);
+        for (k, q) in plane.iter_mut().enumerate() {
+            q.x = if k % 5 == 0 { 0.0 } else { q.x * 3.0 };
+        }
+        sets.push(("plane", plane));
         for (name, p) in &sets {
             let split = tetrahedralize_split(p)
                 .unwrap_or_else(|| panic!("{name} ({} points): the split gave up", p.len()));
