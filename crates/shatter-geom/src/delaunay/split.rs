@@ -62,8 +62,6 @@ struct Half {
     safe: u32,
     /// Faces of safe tetrahedra towards unsafe ones.
     walls: Vec<Wall>,
-    /// Output (input-index) names of the vertices of unsafe tetrahedra.
-    gap_vertices: Vec<u32>,
     /// Input index of internal vertex `k + 1`.
     order: Vec<u32>,
     /// Merged duplicates (internal slot, internal vertex).
@@ -147,7 +145,13 @@ fn sphere_within(p: [&[f64; 3]; 4], side: Side, bound: f64) -> bool {
 /// Triangulates one half (input indices `idx`) in `slab`, classifies its tetrahedra and
 /// renumbers the safe ones to the start of the slab. `None` when the half is degenerate
 /// or does not fit its slab.
-fn half(points: &[DVec3], idx: Vec<u32>, slab: Slab<'_>, side: Side, bound: f64) -> Option<Half> {
+fn build_half<'a>(
+    points: &[DVec3],
+    idx: Vec<u32>,
+    slab: Slab<'a>,
+    side: Side,
+    bound: f64,
+) -> Option<Built<'a>> {
     let order = brio_order_of(points, idx);
     let mut pts = Vec::with_capacity(order.len() + 1);
     pts.push([f64::NAN; 3]);
@@ -206,10 +210,30 @@ fn half(points: &[DVec3], idx: Vec<u32>, slab: Slab<'_>, side: Side, bound: f64)
         .map(|k| name[k])
         .collect();
     drop(in_gap);
+    Some(Built {
+        tets,
+        safe,
+        name,
+        gap_vertices,
+        order,
+        dups,
+    })
+}
 
-    // Renumber in place (a safe tetrahedron's new index never exceeds its old one); the
-    // offset is added at the join. A face towards an unsafe neighbour is a wall, its field
-    // the marker until the join sets it.
+/// Renumbers a half's safe tetrahedra to the start of its slab, in place (a safe
+/// tetrahedron's new index never exceeds its old one); the other half's offset is added
+/// at the join. A face towards an unsafe neighbour is a wall, its field the marker until
+/// the join sets it.
+fn renumber(built: Built<'_>) -> Half {
+    let Built {
+        mut tets,
+        safe,
+        name,
+        order,
+        dups,
+        ..
+    } = built;
+    let total = tets.len();
     let none = tets.adjacency_marker();
     let mut walls = Vec::new();
     let mut out = 0u32;
@@ -239,28 +263,43 @@ fn half(points: &[DVec3], idx: Vec<u32>, slab: Slab<'_>, side: Side, bound: f64)
         out += 1;
     }
     tets.truncate(out as usize);
-    Some(Half {
+    Half {
         safe: out,
         walls,
-        gap_vertices,
         order,
         dups,
-    })
+    }
 }
 
-/// Both halves of `points`, triangulated, classified and renumbered in one buffer: the
-/// left's safe records at its start, the right's at `cap_l`.
-struct Halves {
-    left: Half,
-    right: Half,
-    buf: Vec<Words>,
-    cap_l: usize,
+/// A half triangulated and classified, its records still as built in its slab.
+struct Built<'a> {
+    tets: Narrow<Slab<'a>>,
+    /// The safe tetrahedra.
+    safe: Rank,
+    /// Output name of each internal vertex.
+    name: Vec<u32>,
+    /// Output names of the vertices of unsafe tetrahedra.
+    gap_vertices: Vec<u32>,
+    /// Input index of internal vertex `k + 1`.
+    order: Vec<u32>,
+    /// Merged duplicates (internal slot, internal vertex).
+    dups: Vec<(u32, u32)>,
+}
+
+/// Where the points split: their indices on either side, the axis, and the plane
+/// strictly between the halves that safe spheres must not reach.
+struct Plan {
+    left: Vec<u32>,
+    right: Vec<u32>,
+    axis: usize,
+    bound: f64,
+    /// Records reserved for each half.
+    caps: [usize; 2],
 }
 
 /// Splits `points` across the widest extent at the median of a sample (the halves need
-/// only be about even) and triangulates both halves at once. `None` when the split is
-/// uneven (below a quarter on one side), a half is degenerate or outgrows its part.
-fn halves(points: &[DVec3]) -> Option<Halves> {
+/// only be about even). `None` when the split is uneven (below a quarter on one side).
+fn plan(points: &[DVec3]) -> Option<Plan> {
     let n = points.len();
     if !(64..=<Narrow>::MAX_POINTS).contains(&n) {
         return None;
@@ -302,28 +341,46 @@ fn halves(points: &[DVec3]) -> Option<Halves> {
     if !(left_max < bound && bound < right_min) {
         return None;
     }
-    // One buffer of zeroed records (allocated zeroed, so pages become resident only as
-    // they are written), a part per half.
-    let (cap_l, cap_r) = (
+    let caps = [
         Mesh::<Narrow>::reserve_for(left.len()),
         Mesh::<Narrow>::reserve_for(right.len()),
-    );
-    let mut buf: Vec<Words> = vec![[0; 3]; cap_l + cap_r];
-    let (left, right) = {
-        let (bl, br) = buf.split_at_mut(cap_l);
-        let (bl, br) = (bytemuck::cast_slice_mut(bl), bytemuck::cast_slice_mut(br));
-        let (l, r) = rayon::join(
-            || half(points, left, Slab::new(bl), Side::Left(axis), bound),
-            || half(points, right, Slab::new(br), Side::Right(axis), bound),
-        );
-        (l?, r?)
-    };
-    Some(Halves {
+    ];
+    Some(Plan {
         left,
         right,
-        buf,
-        cap_l,
+        axis,
+        bound,
+        caps,
     })
+}
+
+/// One buffer of zeroed records for both halves (allocated zeroed, so pages become
+/// resident only as they are written).
+fn buffer(plan: &Plan) -> Vec<Words> {
+    vec![[0; 3]; plan.caps[0] + plan.caps[1]]
+}
+
+/// Triangulates and classifies both halves at once, each in its part of `buf`. `None`
+/// when a half is degenerate or outgrows its part.
+fn build_both<'a>(
+    points: &[DVec3],
+    plan: Plan,
+    buf: &'a mut [Words],
+) -> Option<(Built<'a>, Built<'a>)> {
+    let Plan {
+        left,
+        right,
+        axis,
+        bound,
+        caps,
+    } = plan;
+    let (bl, br) = buf.split_at_mut(caps[0]);
+    let (bl, br) = (bytemuck::cast_slice_mut(bl), bytemuck::cast_slice_mut(br));
+    let (l, r) = rayon::join(
+        || build_half(points, left, Slab::new(bl), Side::Left(axis), bound),
+        || build_half(points, right, Slab::new(br), Side::Right(axis), bound),
+    );
+    Some((l?, r?))
 }
 
 /// Whether the split is worth it: a sample of [`GAP_SAMPLE`] points, split the same
@@ -336,8 +393,12 @@ fn sample_splits(points: &[DVec3]) -> bool {
         return true;
     }
     let sample: Vec<DVec3> = points.iter().step_by(n / GAP_SAMPLE).copied().collect();
-    halves(&sample).is_some_and(|h| {
-        let gap = h.left.gap_vertices.len() + h.right.gap_vertices.len();
+    let Some(plan) = plan(&sample) else {
+        return false;
+    };
+    let mut buf = buffer(&plan);
+    build_both(&sample, plan, &mut buf).is_some_and(|(l, r)| {
+        let gap = l.gap_vertices.len() + r.gap_vertices.len();
         gap * 2 <= sample.len()
     })
 }
@@ -354,32 +415,44 @@ pub(crate) fn tetrahedralize_split(points: &[DVec3]) -> Option<Tetrahedralizatio
     if !sample_splits(points) {
         return None;
     }
-    let Halves {
-        left: mut hl,
-        right: mut hr,
-        buf,
-        cap_l,
-    } = halves(points)?;
-    // At most a third in the gap, so that triangulating it (split again if large) ends.
-    if (hl.gap_vertices.len() + hr.gap_vertices.len()) * 3 > n {
-        return None;
-    }
+    let plan = plan(points)?;
+    let cap_l = plan.caps[0];
+    let mut buf = buffer(&plan);
+    // 2–4. Both halves; then their renumbering beside DT(S).
+    let (hl, hr, gap, dts) = {
+        let (mut bl, mut br) = build_both(points, plan, &mut buf)?;
+        let mut gap = std::mem::take(&mut bl.gap_vertices);
+        gap.append(&mut br.gap_vertices);
+        // At most a third in the gap, so that triangulating it always pays.
+        if gap.len() * 3 > n {
+            return None;
+        }
+        let ((hl, hr), dts) = rayon::join(
+            || rayon::join(|| renumber(bl), || renumber(br)),
+            || {
+                let gap_pts: Vec<DVec3> = gap.iter().map(|&i| points[i as usize]).collect();
+                sequential(&gap_pts, usize::MAX)
+            },
+        );
+        (hl, hr, gap, dts)
+    };
+    let dts = dts.ok()?;
+    debug_assert!(
+        dts.duplicates.is_empty(),
+        "the halves merged their duplicates"
+    );
 
-    // 4. DT(S), while the right half's records move behind the left's and the points get
-    // their names.
-    let mut gap: Vec<u32> = std::mem::take(&mut hl.gap_vertices);
-    gap.extend_from_slice(&hr.gap_vertices);
-    hr.gap_vertices = Vec::new();
+    // 5. The walls' far sides in DT(S) and the gap filled from them, while the right
+    // half's records move behind the left's and the points get their names.
     let (safe_l, safe_r) = (hl.safe, hr.safe);
-    let names = [
-        (std::mem::take(&mut hl.order), std::mem::take(&mut hl.dups)),
-        (std::mem::take(&mut hr.order), std::mem::take(&mut hr.dups)),
-    ];
-    let (dts, (mut recs, representative)) = rayon::join(
-        || {
-            let gap_pts: Vec<DVec3> = gap.iter().map(|&i| points[i as usize]).collect();
-            sequential(&gap_pts, usize::MAX)
-        },
+    let mut walls = hl.walls;
+    walls.extend(hr.walls.into_iter().map(|w| Wall {
+        tet: w.tet + safe_l,
+        ..w
+    }));
+    let names = [(hl.order, hl.dups), (hr.order, hr.dups)];
+    let (join, (mut recs, representative)) = rayon::join(
+        || Join::new(&dts, &gap, &walls, n),
         || {
             // Never upwards, so in one forward pass; neighbours shift by the left's count.
             let mut recs = Narrow::from_records(buf);
@@ -401,20 +474,8 @@ pub(crate) fn tetrahedralize_split(points: &[DVec3]) -> Option<Tetrahedralizatio
             (recs, representative)
         },
     );
-    let dts = dts.ok()?;
-    debug_assert!(
-        dts.duplicates.is_empty(),
-        "the halves merged their duplicates"
-    );
+    let join = join?;
     let (duplicates, unique_points) = duplicates_of(&representative);
-
-    // 5. The walls' far sides in DT(S), and the gap filled from them.
-    let mut walls = hl.walls;
-    for mut w in hr.walls {
-        w.tet += safe_l;
-        walls.push(w);
-    }
-    let join = Join::new(&dts, &gap, &walls, n)?;
 
     // The gap's tetrahedra behind the safe ones; then the walls' other sides.
     let none = recs.adjacency_marker();
@@ -654,7 +715,14 @@ mod tests {
     fn points_on_a_sphere_are_not_split() {
         for n in [3000, 40_000] {
             let p = sample(Distribution::Sphere, n, 4);
-            assert!(halves(&p).is_some(), "{n}: the halves themselves build");
+            let plan = plan(&p).expect("an even split");
+            let mut buf = buffer(&plan);
+            let (l, r) = build_both(&p, plan, &mut buf).expect("the halves themselves build");
+            // Nearly every point is in the gap.
+            assert!(
+                (l.gap_vertices.len() + r.gap_vertices.len()) * 10 > n * 9,
+                "{n}"
+            );
             assert!(tetrahedralize_split(&p).is_none(), "{n}");
         }
         let p = sample(Distribution::Sphere, 40_000, 4);
