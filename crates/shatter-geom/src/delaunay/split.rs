@@ -31,8 +31,10 @@
 //!
 //! When most points are on their hull (points on a sphere), nearly all would be in `S`:
 //! a sample of the points is split first, and if half of it lands in its gap the caller
-//! triangulates sequentially. A gap of more than a third of the points is refused too, so
-//! triangulating `S` (split again when it is large) always ends.
+//! triangulates sequentially. A gap of more than a third of the points is refused too
+//! (its sequential triangulation would cost more than the second core saves). `S` itself
+//! is triangulated sequentially, beside the halves' renumbering: it is a thin slab, most
+//! of whose points are on its own hull, which does not split well.
 //!
 //! The result is the same set of tetrahedra as the sequential insertion's, in another
 //! order, and it depends on the points only, not on the number of threads: one thread
