@@ -52,7 +52,7 @@ pub(crate) type Words = [u64; 3];
 /// Where [`Narrow`] records live: a vector of their own, or a [`Slab`] of a buffer shared
 /// with other constructions.
 pub(crate) trait Records {
-    /// Every record (a slab's whole span: those past its length are zero).
+    /// Every record (a slab's whole span, past its length too).
     fn all(&self) -> &[Record];
     /// Every record, mutably.
     fn all_mut(&mut self) -> &mut [Record];
@@ -60,7 +60,7 @@ pub(crate) trait Records {
     fn len(&self) -> usize;
     /// Most records it can hold.
     fn room(&self) -> usize;
-    /// Appends a zero record.
+    /// Appends a record (zero in a vector; as it was in a slab).
     fn push(&mut self);
     /// Keeps the first `len` records.
     fn truncate(&mut self, len: usize);
@@ -111,7 +111,7 @@ pub(crate) struct Slab<'a> {
 }
 
 impl<'a> Slab<'a> {
-    /// A slab over `buf`, which must be all zero.
+    /// An empty slab over `buf`.
     pub(crate) fn new(buf: &'a mut [Record]) -> Self {
         Self { buf, len: 0 }
     }
@@ -135,7 +135,7 @@ impl Records for Slab<'_> {
     }
     #[inline]
     fn push(&mut self) {
-        // The slot is still zero: a slab's records are never handed out twice.
+        // Its fields are unspecified until set (`Store::push`), so the slot is not cleared.
         assert!(self.len < self.buf.len(), "slab full");
         self.len += 1;
     }
