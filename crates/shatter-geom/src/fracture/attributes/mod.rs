@@ -65,7 +65,8 @@ pub fn interior_material() -> Material {
     m
 }
 
-/// Sets every fragment's [`Fragment::corners`] and [`Fragment::material`] and the
+/// Sets every fragment's [`corners`](crate::fracture::Fragment::corners) and
+/// [`material`](crate::fracture::Fragment::material) and the
 /// fracture's [`Fracture::materials`] (the input's, then `interior`). `tags[f]` has the
 /// kernel tag of each triangle of fragment `f` (see the module docs).
 pub(crate) fn attach(fracture: &mut Fracture, tags: &[Vec<u64>], src: &Source<'_>) {

@@ -41,7 +41,8 @@ pub(crate) fn split(piece: &Piece, plane: &Plane, eps: f64) -> [Option<Piece>; 2
     cut(piece, plane, eps, true, false)
 }
 
-/// [`split`], leaving both caps as [`Face`]s; the faces of `piece` are cut as polygons.
+/// Both sides of `piece` cut by `plane` (the tests' `split`), leaving both caps as
+/// [`Face`]s; the faces of `piece` are cut as polygons.
 pub(crate) fn split_keeping_faces(piece: &Piece, plane: &Plane, eps: f64) -> [Option<Piece>; 2] {
     cut(piece, plane, eps, true, true)
 }

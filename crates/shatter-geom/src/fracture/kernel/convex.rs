@@ -122,8 +122,8 @@ pub(crate) fn decomposition_parts(piece: &Piece) -> Option<Vec<Piece>> {
     decomposition_parts_with(piece, CONVEX_TOL, MAX_PIECES)
 }
 
-/// [`decomposition_parts`] with its tolerance (relative to the solid's size) and the
-/// most parts it makes.
+/// The convex parts of `piece` (the tests' `decomposition_parts`) with its tolerance
+/// (relative to the solid's size) and the most parts it makes.
 fn decomposition_parts_with(piece: &Piece, rel_tol: f64, max_pieces: usize) -> Option<Vec<Piece>> {
     let tol = rel_tol * super::mesh_scale(piece);
     let first = worst_face(piece, tol);
@@ -133,7 +133,7 @@ fn decomposition_parts_with(piece: &Piece, rel_tol: f64, max_pieces: usize) -> O
     Some(parts)
 }
 
-/// The loop of [`decomposition_parts`]: the parts of `piece`, split worst first, into
+/// The loop of [`decomposition_parts_with`]: the parts of `piece`, split worst first, into
 /// `out`.
 fn decompose_into(
     piece: &Piece,

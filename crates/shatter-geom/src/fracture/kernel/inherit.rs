@@ -3,7 +3,7 @@
 //! fragment decomposed again.
 //!
 //! A cell is convex and so is a piece, so each intersection is a convex polytope
-//! ([`Polytope::clip`]); the fragment is the solid within the cell, so these polytopes
+//! ([`Polytope::clip_into`]); the fragment is the solid within the cell, so these polytopes
 //! cover it as the solid's pieces covered the solid. Clipping them by the fragment's
 //! bounding box as well keeps them near the fragment where a piece's hull reaches past
 //! the solid (a piece convex within the decomposition's tolerance only).

@@ -92,8 +92,8 @@ impl Polytope {
         Some(Polytope::from_faces(pos, corners, start))
     }
 
-    /// The convex hull of `points` ([`hull_triangles`]), neighbouring triangles in one
-    /// plane joined into one face (a hull's flat regions come as many triangles);
+    /// The convex hull of `points` ([`hull_mesh`]), neighbouring triangles in one plane
+    /// joined into one face (a hull's flat regions come as many triangles);
     /// `None` when the points span no volume.
     pub fn hull(points: &[DVec3]) -> Option<Polytope> {
         let mesh = hull_mesh(points)?;
@@ -226,8 +226,8 @@ impl Polytope {
         }
     }
 
-    /// [`Polytope::clip`], the part kept written to `out` (when it is [`Outcome::Cut`]),
-    /// with `scratch`'s buffers: a loop of cuts allocates nothing once they have grown.
+    /// The part of the polytope on the negative side of `plane` (the tests' `clip`),
+    /// written to `out` (when it is [`Outcome::Cut`]), with `scratch`'s buffers: a loop of cuts allocates nothing once they have grown.
     ///
     /// Each face keeps its corners on the kept side or on the plane, and gains the point
     /// where each of its edges crosses the plane (computed once per edge, from its

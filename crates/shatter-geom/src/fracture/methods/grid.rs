@@ -3,7 +3,7 @@
 //! A box-shaped mesh (its volume that of its bounding box) is cut analytically into
 //! bricks: eight corners and twelve triangles each, the bonds from the grid, no clipping
 //! (a 20,000-brick wall in milliseconds). Any other mesh is sliced by the grid's planes
-//! through the exact kernel, as [`slice`] does, and each piece is placed in the cell
+//! through the exact kernel, as [`fn@slice`] does, and each piece is placed in the cell
 //! that holds it. Either way, cells inside a void are dropped and the faces that border
 //! one become surface.
 
