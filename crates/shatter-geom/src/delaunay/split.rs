@@ -697,6 +697,72 @@ mod tests {
         }
     }
 
+    /// Inputs made to tie where the halves meet, each with three seeds: points on planes
+    /// across the split axis (the median on one of them), a lattice with half its
+    /// points dropped (cospherical ties everywhere, across the gap too), and tight clusters
+    /// (large empty spheres between them). The split equals the sequential insertion on
+    /// every one, or declines.
+    #[test]
+    fn ties_at_the_seam_give_the_sequential_triangulation() {
+        use rand::{Rng, SeedableRng};
+        let mut applied = 0;
+        for seed in 0..3u64 {
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+            let n = 12_000;
+            let planes: Vec<DVec3> = (0..n)
+                .map(|_| {
+                    // 41 planes 0.1 apart, about as far as the points on each.
+                    let x = rng.random_range(-20..=20) as f64 * 0.1;
+                    DVec3::new(x, rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0))
+                })
+                .collect();
+            let lattice: Vec<DVec3> = (0..40 * 25 * 25)
+                .filter(|_| rng.random_bool(0.5))
+                .map(|k| DVec3::new((k / 625) as f64, (k / 25 % 25) as f64, (k % 25) as f64))
+                .collect();
+            let centres: Vec<DVec3> = (0..12)
+                .map(|_| {
+                    DVec3::new(
+                        rng.random_range(-3.0..3.0),
+                        rng.random_range(-1.0..1.0),
+                        0.0,
+                    )
+                })
+                .collect();
+            let clusters: Vec<DVec3> = (0..n)
+                .map(|k| {
+                    let off = DVec3::new(
+                        rng.random_range(-1.0..1.0),
+                        rng.random_range(-1.0..1.0),
+                        rng.random_range(-1.0..1.0),
+                    );
+                    centres[k % centres.len()] + 0.02 * off
+                })
+                .collect();
+            for (name, p) in [
+                ("planes", planes),
+                ("lattice", lattice),
+                ("clusters", clusters),
+            ] {
+                let Some(split) = tetrahedralize_split(&p) else {
+                    continue;
+                };
+                applied += 1;
+                split
+                    .validate(&p)
+                    .unwrap_or_else(|e| panic!("{name}, seed {seed}: {e}"));
+                let seq = sequential(&p, usize::MAX).expect("sequential");
+                assert_eq!(tet_set(&split), tet_set(&seq), "{name}, seed {seed}");
+                assert_eq!(
+                    split.representative, seq.representative,
+                    "{name}, seed {seed}"
+                );
+            }
+        }
+        // The test is about the split: these must take it.
+        assert_eq!(applied, 9, "the split applied to only {applied} of 9");
+    }
+
     /// The public call takes the split from [`SPLIT_MIN_POINTS`] on, and its result is
     /// exactly Delaunay.
     #[test]
