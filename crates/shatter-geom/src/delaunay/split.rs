@@ -12,7 +12,7 @@
 //!    tetrahedron of the whole triangulation. The test is in floating point with a margin
 //!    wider than its rounding, so a sphere it cannot decide is unsafe: that only costs
 //!    work. The unsafe ones are found by a search from the half's hull, which tests only
-//!    them and their neighbours (see `half`).
+//!    them and their neighbours (see `build_half`).
 //! 4. **The gap.** Let `S` be the vertices of the unsafe tetrahedra (the infinite ones
 //!    included, so every vertex of a half's hull is in `S`). Every tetrahedron of the whole
 //!    triangulation that is not safe has all its vertices in `S`: for a vertex `a` of the
@@ -479,9 +479,13 @@ pub(crate) fn tetrahedralize_split(points: &[DVec3]) -> Option<Tetrahedralizatio
     let join = join?;
     let (duplicates, unique_points) = duplicates_of(&representative);
 
-    // The gap's tetrahedra behind the safe ones; then the walls' other sides.
+    // The gap's tetrahedra behind the safe ones; then the walls' other sides. Every index
+    // must fit the narrow records' neighbour fields.
     let none = recs.adjacency_marker();
     let base = safe_l + safe_r;
+    if base as usize + dts.len() > <Narrow>::MAX_TETS {
+        return None;
+    }
     for g in 0..dts.len() as u32 {
         if !join.fill.has(g) {
             continue;
