@@ -8,7 +8,7 @@ use super::order::brio_order;
 use super::output::finish;
 use super::packed::{Narrow, Store, Wide};
 use super::predicates::orient;
-use super::storage::Mesh;
+use super::storage::{Mesh, points_in_order, reserve_for};
 use super::types::{DelaunayError, Tetrahedralization};
 
 /// The tetrahedralization of `points` (checked by the caller) by one insertion after the
@@ -25,9 +25,7 @@ pub(super) fn sequential(
         });
     }
     let order = brio_order(points);
-    let mut pts = Vec::with_capacity(n + 1);
-    pts.push([f64::NAN; 3]);
-    pts.extend(order.iter().map(|&i| points[i as usize].to_array()));
+    let pts = points_in_order(points, &order);
     let first = first_simplex(&pts).ok_or_else(|| {
         let distinct = count_distinct(points);
         if distinct < 4 {
@@ -41,7 +39,7 @@ pub(super) fn sequential(
     // Narrow records when the points allow it; wide ones from the start, or from the
     // insertion that no longer fitted the narrow ones.
     let (mut mesh, from) = if n <= <Narrow>::MAX_POINTS && narrow_limit >= 5 {
-        let tets = Narrow::with_capacity(Mesh::<Narrow>::reserve_for(n));
+        let tets = Narrow::with_capacity(reserve_for(n));
         let mut mesh = Mesh::new(pts, tets, narrow_limit);
         start(&mut mesh, first);
         match insert_from(&mut mesh, (1, None), first, &mut dups) {
@@ -49,7 +47,7 @@ pub(super) fn sequential(
             Some(full) => (mesh.into_wide(), full),
         }
     } else {
-        let tets = Wide::with_capacity(Mesh::<Wide>::reserve_for(n));
+        let tets = Wide::with_capacity(reserve_for(n));
         let mut mesh = Mesh::new(pts, tets, usize::MAX);
         start(&mut mesh, first);
         (mesh, (1, None))

@@ -46,7 +46,7 @@ use super::order::brio_order_of;
 use super::output::{Rank, duplicates_of, fill_representative, vertex_names};
 use super::packed::{Narrow, Slab, Store, Tets, Words};
 use super::sequential::{first_simplex, insert_from, sequential, start};
-use super::storage::{FLAGS, INF, MARK, Mesh, SEEN};
+use super::storage::{FLAGS, INF, MARK, Mesh, SEEN, points_in_order, reserve_for};
 use super::types::{FACES, NO_NEIGHBOR, Tetrahedralization};
 use crate::util::{FastMap, bounds};
 
@@ -155,9 +155,7 @@ fn build_half<'a>(
     bound: f64,
 ) -> Option<Built<'a>> {
     let order = brio_order_of(points, idx);
-    let mut pts = Vec::with_capacity(order.len() + 1);
-    pts.push([f64::NAN; 3]);
-    pts.extend(order.iter().map(|&i| points[i as usize].to_array()));
+    let pts = points_in_order(points, &order);
     let first = first_simplex(&pts)?;
     let mut mesh = Mesh::new(pts, Narrow::in_slab(slab), usize::MAX);
     start(&mut mesh, first);
@@ -343,10 +341,7 @@ fn plan(points: &[DVec3]) -> Option<Plan> {
     if !(left_max < bound && bound < right_min) {
         return None;
     }
-    let caps = [
-        Mesh::<Narrow>::reserve_for(left.len()),
-        Mesh::<Narrow>::reserve_for(right.len()),
-    ];
+    let caps = [reserve_for(left.len()), reserve_for(right.len())];
     Some(Plan {
         left,
         right,
@@ -469,6 +464,9 @@ pub(crate) fn tetrahedralize_split(points: &[DVec3]) -> Option<Tetrahedralizatio
             }
             recs.truncate((safe_l + safe_r) as usize);
             let mut representative = vec![0u32; n];
+            // The halves' names are made again here rather than kept from their
+            // renumbering: kept, they would add 4 B/pt to this step's peak (measured:
+            // 190 -> 193 B/pt on 1M points), to save a few milliseconds.
             for (order, dups) in names {
                 let name = vertex_names(&order, &dups);
                 fill_representative(&mut representative, &order, &dups, &name);
@@ -827,7 +825,7 @@ mod tests {
             [0.0, 1.0, 0.0],
             [0.0, 0.0, 1.0],
         ];
-        let p = [&q[0], &q[1], &q[2], &q[3]];
+        let p = q.each_ref();
         // Circumcentre (0.5, 0.5, 0.5), radius sqrt(0.75) ≈ 0.866: x in [-0.366, 1.366].
         assert!(sphere_within(p, Side::Left(0), 1.367));
         assert!(!sphere_within(p, Side::Left(0), 1.366));
@@ -841,7 +839,7 @@ mod tests {
             [0.0, 1.0, 0.0],
             [1.0, 1.0, 0.0],
         ];
-        let f = [&flat[0], &flat[1], &flat[2], &flat[3]];
+        let f = flat.each_ref();
         assert!(!sphere_within(f, Side::Left(0), 1e9));
     }
 }

@@ -3,6 +3,8 @@
 //! See the module docs of [`super`] for the layout. Vertex `0` is the infinite vertex;
 //! input points live at internal indices `1..=n` in insertion (BRIO) order.
 
+use glam::DVec3;
+
 use super::packed::{Narrow, Store, Wide};
 use super::types::FACES;
 
@@ -97,15 +99,24 @@ const fn build_edge_table() -> [[(u8, u8); 4]; 4] {
     t
 }
 
-impl<S: Store> Mesh<S> {
-    /// Room to reserve for the tetrahedra of `points` points: ~6.77 finite tetrahedra per
-    /// point for uniform points, plus the hull's infinite ones. Reserving a little more
-    /// avoids a reallocation (which may copy) near the end; pages never written are never
-    /// resident.
-    pub(crate) fn reserve_for(points: usize) -> usize {
-        points * 7 + 1024
-    }
+/// Records to reserve for the tetrahedra of `points` points: ~6.77 finite tetrahedra per
+/// point for uniform points, plus the hull's infinite ones. Reserving a little more
+/// avoids a reallocation (which may copy) near the end; pages never written are never
+/// resident.
+pub(crate) fn reserve_for(points: usize) -> usize {
+    points * 7 + 1024
+}
 
+/// `pts` of a [`Mesh`]: the points `order` lists, in that order, after the placeholder of
+/// the infinite vertex.
+pub(crate) fn points_in_order(points: &[DVec3], order: &[u32]) -> Vec<[f64; 3]> {
+    let mut pts = Vec::with_capacity(order.len() + 1);
+    pts.push([f64::NAN; 3]);
+    pts.extend(order.iter().map(|&i| points[i as usize].to_array()));
+    pts
+}
+
+impl<S: Store> Mesh<S> {
     /// Empty triangulation of `pts` (internal order, with the placeholder at 0) over the
     /// empty storage `tets`, growing to at most `limit` records.
     pub(crate) fn new(pts: Vec<[f64; 3]>, tets: S, limit: usize) -> Self {

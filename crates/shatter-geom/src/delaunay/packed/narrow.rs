@@ -163,6 +163,13 @@ impl<'a> Narrow<Slab<'a>> {
 }
 
 impl Narrow {
+    /// Empty records with room reserved for `capacity`.
+    pub(crate) fn with_capacity(capacity: usize) -> Self {
+        Self {
+            recs: Vec::with_capacity(capacity.min(Self::MAX_TETS)),
+        }
+    }
+
     /// Records kept in `recs` (its length and contents as they are).
     pub(crate) fn from_records(recs: Vec<Words>) -> Self {
         Self { recs }
@@ -192,15 +199,6 @@ impl<R> Narrow<R> {
         w.copy_from_slice(&r[byte..byte + 8]);
         let w = u64::from_le_bytes(w) & !(mask << shift) | (x as u64 & mask) << shift;
         r[byte..byte + 8].copy_from_slice(&w.to_le_bytes());
-    }
-}
-
-impl Narrow {
-    /// Empty records with room reserved for `capacity`.
-    pub(crate) fn with_capacity(capacity: usize) -> Self {
-        Self {
-            recs: Vec::with_capacity(capacity.min(Self::MAX_TETS)),
-        }
     }
 }
 

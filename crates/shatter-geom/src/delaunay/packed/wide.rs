@@ -37,9 +37,7 @@ impl Wide {
         }
         w
     }
-}
 
-impl Wide {
     /// Empty records with room reserved for `capacity`.
     pub(crate) fn with_capacity(capacity: usize) -> Self {
         let capacity = capacity.min(Self::MAX_TETS);

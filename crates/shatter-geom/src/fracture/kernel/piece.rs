@@ -283,8 +283,8 @@ impl Piece {
         self.tris.is_empty() && self.faces.is_empty()
     }
 
-    /// Triangulates the [`Face`]s (see [`triangulate_cap`](super::cap::triangulate_cap)), each triangle tagged with
-    /// its face's plane; afterwards the piece is triangles only.
+    /// Triangulates the [`Face`]s (see [`triangulate_cap`](super::cap::triangulate_cap)),
+    /// each triangle tagged with its face's plane; afterwards the piece is triangles only.
     pub fn close_faces(&mut self) {
         for face in std::mem::take(&mut self.faces) {
             self.triangulate(&face);

@@ -2,8 +2,8 @@
 
 use glam::DVec3;
 
-/// An oriented plane `n · x = d`; its negative side `n · x < d` is kept by [`clip`](super::clip::clip).
-/// `tag` is written on the cap triangles the plane creates.
+/// An oriented plane `n · x = d`; its negative side `n · x < d` is kept by
+/// [`clip`](super::clip::clip). `tag` is written on the cap triangles the plane creates.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Plane {
     pub n: DVec3,

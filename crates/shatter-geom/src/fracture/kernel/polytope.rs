@@ -227,7 +227,8 @@ impl Polytope {
     }
 
     /// The part of the polytope on the negative side of `plane` (the tests' `clip`),
-    /// written to `out` (when it is [`Outcome::Cut`]), with `scratch`'s buffers: a loop of cuts allocates nothing once they have grown.
+    /// written to `out` (when it is [`Outcome::Cut`]), with `scratch`'s buffers: a loop
+    /// of cuts allocates nothing once they have grown.
     ///
     /// Each face keeps its corners on the kept side or on the plane, and gains the point
     /// where each of its edges crosses the plane (computed once per edge, from its
