@@ -293,6 +293,16 @@ fn the_debris_cap_and_the_launch_limit_are_read_and_saved() {
         .build(None)
         .unwrap();
     assert!(boxes(&world.to_scene_toml().unwrap()));
+    let enclosed = |text: &str| Scene::parse(text).unwrap().settings.enclosed_colliders;
+    assert!(!enclosed(""));
+    assert!(enclosed("[world]\nenclosed_colliders = true\n"));
+    let e = err("[world]\nenclosed_colliders = \"yes\"\n");
+    assert!(e.contains("enclosed_colliders"), "{e}");
+    let world = Scene::parse("[world]\nenclosed_colliders = true\n")
+        .unwrap()
+        .build(None)
+        .unwrap();
+    assert!(enclosed(&world.to_scene_toml().unwrap()));
     let tiny = |text: &str| Scene::parse(text).unwrap().settings.tiny_debris;
     assert_eq!(tiny(""), shatter_sim::DEFAULT_TINY_DEBRIS);
     assert_eq!(tiny("[world]\ntiny_debris = 0\n"), 0.0);

@@ -40,6 +40,11 @@ pub struct BenchScaleArgs {
     /// `skip_held_contacts`): faster, fewer bonds break (see docs/scene-format.md).
     #[arg(long)]
     pub skip_held_contacts: bool,
+    /// Enclosed cluster bricks (a block's interior) have colliders from the start (the
+    /// scene key `enclosed_colliders`): slower, as before it existed (see
+    /// docs/scene-format.md).
+    #[arg(long)]
+    pub enclosed_colliders: bool,
     /// Print one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,
@@ -56,6 +61,7 @@ impl BenchScaleArgs {
             out: self.out.clone(),
             box_colliders: self.box_colliders,
             skip_held_contacts: self.skip_held_contacts,
+            enclosed_colliders: self.enclosed_colliders,
         }
     }
 }

@@ -23,7 +23,7 @@ use std::collections::BTreeSet;
 use glam::Vec3;
 use rapier3d::prelude::*;
 
-use crate::bonds::live::{LiveObject, Surface};
+use crate::bonds::live::{Attach, LiveObject, Surface};
 use crate::bonds::tags::{Kind, tag};
 pub(crate) use crate::breaking::{EVENT_THRESHOLD_FRACTION, Loads};
 use crate::breaking::{contact_share, explosion_load};
@@ -45,15 +45,29 @@ pub(crate) fn build(
     };
     let body = world.insert_body(builder.pose(pose).user_data(tag(Kind::Fragment, object, 0)));
     let threshold = live.bonds.strength * EVENT_THRESHOLD_FRACTION;
+    let attach = Attach {
+        object,
+        surface,
+        force_events: Some(threshold),
+    };
     let mut any = false;
     for f in 0..prepared.fracture.fragments.len() as u32 {
+        // An enclosed fragment (a block's interior brick) gets its colliders when a bond
+        // of it breaks.
+        if surface.hide_enclosed && live.hide(f, body, attach) {
+            continue;
+        }
         any |= live.attach_fragment(world, object, f, body, surface, Some(threshold)) > 0;
     }
     if !any {
+        for f in 0..prepared.fracture.fragments.len() {
+            live.body[f] = None;
+        }
         world.remove_body(body);
         return;
     }
-    world.bodies[body].recompute_mass_properties_from_colliders(&world.colliders);
+    let all: Vec<u32> = (0..prepared.fracture.fragments.len() as u32).collect();
+    live.set_mass(world, body, &all);
 }
 
 /// Loads the bonds around fragment `f` with a contact force `force`.

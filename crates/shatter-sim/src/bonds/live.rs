@@ -31,6 +31,25 @@ pub(crate) struct LiveObject {
     pub stress: Option<Box<StressState>>,
     /// Which fragments the joints hold, whose contacts are skipped (joints model).
     pub held: crate::bonds::held::Held,
+    /// Per fragment, whether it is on its body without colliders ([`LiveObject::hide`]):
+    /// an enclosed fragment whose bonds all hold (clusters model).
+    pub hidden: Vec<bool>,
+    /// How many fragments are hidden (0: the passes over them are skipped).
+    pub hidden_count: usize,
+    /// How the hidden fragments' colliders are made when they are exposed.
+    pub attach: Option<Attach>,
+}
+
+/// How a fragment's colliders are made ([`LiveObject::attach_fragment`]'s arguments
+/// other than the fragment and its body).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Attach {
+    /// The object's id.
+    pub object: u32,
+    /// Its material's values.
+    pub surface: Surface,
+    /// The contact-force event threshold (N), if any.
+    pub force_events: Option<f32>,
 }
 
 /// The stress solver of an anchored cluster object.
@@ -120,6 +139,9 @@ pub(crate) struct Surface {
     pub restitution: f32,
     /// A box-shaped piece collides as a cuboid ([`crate::WorldSettings::box_colliders`]).
     pub boxes: bool,
+    /// Enclosed fragments get no colliders until a bond of theirs breaks
+    /// ([`LiveObject::hide`]; not [`crate::WorldSettings::enclosed_colliders`]).
+    pub hide_enclosed: bool,
     /// Contacts between fragments the joints hold are skipped
     /// ([`crate::bonds::held`]; joints model).
     pub skip_held: bool,
@@ -143,6 +165,84 @@ impl LiveObject {
                 version: u64::MAX,
                 near: Vec::new(),
             },
+            hidden: vec![false; n],
+            hidden_count: 0,
+            attach: None,
+        }
+    }
+
+    /// Puts fragment `f` on `body` without colliders when it is enclosed
+    /// ([`Prepared::enclosed`]), has collision shapes and its bonds all hold; returns
+    /// whether it did. Its colliders are made when a bond of it breaks
+    /// ([`LiveObject::expose_broken`]); meanwhile its mass counts in the body's additional
+    /// mass properties ([`LiveObject::set_mass`]). `attach` is how they will be made.
+    ///
+    /// (Disabled colliders would not do: Rapier's continuous collision detection still
+    /// sweeps them, computing each one's mass properties every step the body moves fast.)
+    pub fn hide(&mut self, f: u32, body: RigidBodyHandle, attach: Attach) -> bool {
+        let i = f as usize;
+        let enclosed = self.prepared.enclosed.get(i).copied().unwrap_or(false);
+        let shaped = self.prepared.shapes.get(i).is_some_and(|s| !s.is_empty());
+        if !enclosed || !shaped || self.hidden[i] || self.any_broken(i) {
+            return false;
+        }
+        self.attach = Some(attach);
+        self.body[i] = Some(body);
+        self.hidden[i] = true;
+        self.hidden_count += 1;
+        true
+    }
+
+    /// Makes the colliders of every hidden fragment of `fragments` that has a broken
+    /// bond, on its body: its neighbour there may now be on another body, and it can be
+    /// touched. Call after the fragments' bodies are set.
+    pub fn expose_broken(&mut self, world: &mut PhysicsWorld, fragments: &[u32]) {
+        let Some(attach) = self.attach.filter(|_| self.hidden_count > 0) else {
+            return;
+        };
+        for &f in fragments {
+            let i = f as usize;
+            if !self.hidden.get(i).copied().unwrap_or(false) || !self.any_broken(i) {
+                continue;
+            }
+            self.hidden[i] = false;
+            self.hidden_count -= 1;
+            if let Some(body) = self.body[i] {
+                self.attach_fragment(
+                    world,
+                    attach.object,
+                    f,
+                    body,
+                    attach.surface,
+                    attach.force_events,
+                );
+            }
+        }
+    }
+
+    /// Whether a bond of fragment `f` is broken.
+    fn any_broken(&self, f: usize) -> bool {
+        self.prepared.adjacency[f]
+            .iter()
+            .any(|&b| self.bonds.broken[b as usize])
+    }
+
+    /// Sets the mass properties of `body`, which holds `fragments`: those of its
+    /// colliders (Rapier's sum) and, as the body's additional mass properties, those of
+    /// its hidden fragments, which have no colliders.
+    pub fn set_mass(&self, world: &mut PhysicsWorld, body: RigidBodyHandle, fragments: &[u32]) {
+        let mut extra = MassProperties::default();
+        if let Some(attach) = self.attach.filter(|_| self.hidden_count > 0) {
+            for &f in fragments {
+                if self.hidden.get(f as usize).copied().unwrap_or(false) {
+                    extra += self.exact_mass(f, attach.surface.density, Vec3::ZERO);
+                }
+            }
+        }
+        let colliders = &world.colliders;
+        if let Some(rb) = world.bodies.get_mut(body) {
+            rb.set_additional_mass_properties(extra, false);
+            rb.recompute_mass_properties_from_colliders(colliders);
         }
     }
 

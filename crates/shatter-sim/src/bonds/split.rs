@@ -68,9 +68,12 @@ pub(crate) fn split(
         }
         handles.push(new);
     }
+    // A hidden fragment with a broken bond may now face another body.
+    for part in &parts {
+        live.expose_broken(world, part);
+    }
     for (part, &h) in parts.iter().zip(&handles) {
         let anchored = part.iter().any(|&f| live.prepared.anchored[f as usize]);
-        let colliders = &world.colliders;
         let Some(rb) = world.bodies.get_mut(h) else {
             continue;
         };
@@ -85,10 +88,15 @@ pub(crate) fn split(
         if anchored {
             // A fixed part's mass is not used before Rapier's next step, which recomputes
             // it (its colliders changed): doing it here too would cost a second pass over
-            // what is often the whole anchored wall.
+            // what is often the whole anchored wall. (Its additional mass may still count
+            // hidden fragments now on other parts; a fixed body does not use it, and the
+            // part is given its own when it comes loose.)
             continue;
         }
-        rb.recompute_mass_properties_from_colliders(colliders);
+        live.set_mass(world, h, part);
+        let Some(rb) = world.bodies.get_mut(h) else {
+            continue;
+        };
         if was_dynamic {
             let ci = world_com(rb);
             rb.set_linvel(inherited_velocity(v, w, c, ci), true);

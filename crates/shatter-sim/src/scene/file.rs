@@ -41,6 +41,8 @@ pub struct WorldSection {
     pub ground: Option<bool>,
     /// Box-shaped pieces collide as cuboids (default false).
     pub box_colliders: Option<bool>,
+    /// Enclosed fragments of cluster objects have colliders from the start (default false).
+    pub enclosed_colliders: Option<bool>,
     /// Joints-model fragments held within three bonds skip their contacts (default false).
     pub skip_held_contacts: Option<bool>,
     /// Debris bodies kept: an integer ≥ 0, or `"none"` (no cap). Default

@@ -100,6 +100,9 @@ impl Scene {
         if let Some(b) = w.box_colliders {
             settings.box_colliders = b;
         }
+        if let Some(b) = w.enclosed_colliders {
+            settings.enclosed_colliders = b;
+        }
         if let Some(b) = w.skip_held_contacts {
             settings.skip_held_contacts = b;
         }

@@ -28,6 +28,7 @@ impl World {
                 bond_model: Some(sp(s.bond_model.name().to_string())),
                 ground: Some(s.ground),
                 box_colliders: Some(s.box_colliders),
+                enclosed_colliders: Some(s.enclosed_colliders),
                 skip_held_contacts: Some(s.skip_held_contacts),
                 max_debris: Some(sp(budget_value(s.max_debris))),
                 max_launch_speed: Some(sp(s.max_launch_speed)),

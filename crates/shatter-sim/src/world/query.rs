@@ -36,6 +36,10 @@ impl World {
         // sees new bodies after a step (the app clicks on objects before Start).
         let mut best: Option<(Real, u32)> = None;
         for (_, co) in self.physics.colliders.iter() {
+            // (A disabled collider is an enclosed fragment's: its neighbours are hit first.)
+            if !co.is_enabled() {
+                continue;
+            }
             let Some((Kind::Fragment, object, _)) = untag(co.user_data) else {
                 continue;
             };
@@ -122,6 +126,30 @@ impl World {
             .filter(|h| seen.insert(h.into_raw_parts()))
             .copied()
             .collect()
+    }
+
+    /// Per fragment of object `id`, how many colliders it has now: one per convex piece,
+    /// and none for a fragment without a body or an enclosed one whose bonds all hold
+    /// ([`WorldSettings::enclosed_colliders`](crate::WorldSettings::enclosed_colliders)).
+    /// Empty for an unknown object.
+    ///
+    /// ```
+    /// use shatter_sim::testing::box_grid_fracture;
+    /// use shatter_sim::{ObjectSpec, World, WorldSettings};
+    /// let mut world = World::new(WorldSettings::default());
+    /// let spec = ObjectSpec::from_fracture(box_grid_fracture([3, 3, 3], [3.0, 3.0, 3.0].into()), [0.0, 5.0, 0.0].into());
+    /// let id = world.add_object(spec).unwrap();
+    /// let colliders = world.fragment_colliders(id);
+    /// // The centre brick (1, 1, 1) is enclosed by its six bonded neighbours.
+    /// assert_eq!(colliders[13], 0);
+    /// assert_eq!(colliders.iter().filter(|&&n| n == 1).count(), 26);
+    /// ```
+    pub fn fragment_colliders(&self, id: ObjectId) -> Vec<usize> {
+        self.objects
+            .get(&id)
+            .and_then(|r| r.live.as_ref())
+            .map(|live| live.colliders.iter().map(Vec::len).collect())
+            .unwrap_or_default()
     }
 
     /// Pairs of colliders in contact after the last step (Rapier's narrow phase, pairs

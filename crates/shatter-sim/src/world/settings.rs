@@ -82,6 +82,16 @@ pub struct WorldSettings {
     /// so which bonds a hit or a fall breaks differs, and `collapse.toml` leaves 8 of
     /// the 40 bricks above its hole standing where the hulls bring all down.
     pub box_colliders: bool,
+    /// Cluster objects give colliders to their enclosed fragments too
+    /// ([`Prepared::enclosed`](crate::object::Prepared::enclosed): a fragment whose every face is
+    /// a cut face bonded to a neighbour, such as a block's interior brick). Off by
+    /// default: such a fragment gets its colliders only when a bond of it breaks (until
+    /// then nothing can reach it without passing through its neighbours), and its mass
+    /// counts in its body's additional mass. Bench scale's 20,000-brick block falls at
+    /// 4 ms per step instead of 31 with them. Turn it on to have a deep interpenetration
+    /// (a body moving more than a fragment's size in one step into another) met by
+    /// every fragment it reaches, as before.
+    pub enclosed_colliders: bool,
     /// Joints-model objects skip the contacts between fragments held within three intact
     /// bonds of each other (a brick's edge and corner neighbours: the joints keep them in
     /// place, as a cluster's fragments share a body; `crate::bonds::held`). Bench
@@ -127,6 +137,7 @@ impl Default for WorldSettings {
             max_launch_speed: DEFAULT_MAX_LAUNCH_SPEED,
             tiny_debris: DEFAULT_TINY_DEBRIS,
             box_colliders: false,
+            enclosed_colliders: false,
             skip_held_contacts: false,
             solver_iterations: 4,
             stress: true,

@@ -279,6 +279,7 @@ impl World {
             friction: spec.material.friction,
             restitution: spec.material.restitution,
             boxes: self.settings.box_colliders,
+            hide_enclosed: !self.settings.enclosed_colliders,
             skip_held: model == BondModel::Joints && self.settings.skip_held_contacts,
         };
         match model {

@@ -48,6 +48,9 @@ pub struct BenchScaleOptions {
     /// Joints-model fragments held within three bonds skip their contacts
     /// ([`WorldSettings::skip_held_contacts`](shatter_sim::WorldSettings::skip_held_contacts)).
     pub skip_held_contacts: bool,
+    /// Enclosed bricks of cluster objects have colliders from the start
+    /// ([`WorldSettings::enclosed_colliders`](shatter_sim::WorldSettings::enclosed_colliders)).
+    pub enclosed_colliders: bool,
 }
 
 /// The largest world one run may ask for (the estimate refuses what the machine cannot
@@ -121,6 +124,9 @@ pub struct BenchScaleReport {
     /// Whether joints-model bricks held within three bonds skipped their contacts
     /// (`--skip-held-contacts`).
     pub skip_held_contacts: bool,
+    /// Whether enclosed cluster bricks had colliders from the start
+    /// (`--enclosed-colliders`).
+    pub enclosed_colliders: bool,
     /// The estimate checked before the runs (s).
     pub estimated_seconds: f64,
     /// Wall-clock seconds of all runs (building included).
@@ -141,6 +147,7 @@ struct ScaleConfig {
     steps: u64,
     box_colliders: bool,
     skip_held_contacts: bool,
+    enclosed_colliders: bool,
 }
 
 impl ScaleConfig {
@@ -187,14 +194,17 @@ impl ScaleConfig {
             steps: steps_of(o.seconds),
             box_colliders: o.box_colliders,
             skip_held_contacts: o.skip_held_contacts,
+            enclosed_colliders: o.enclosed_colliders,
         })
     }
 
-    /// The world settings the options change (`--box-colliders`, `--skip-held-contacts`).
+    /// The world settings the options change (`--box-colliders`, `--skip-held-contacts`,
+    /// `--enclosed-colliders`).
     fn settings(&self) -> worlds::Speedups {
         worlds::Speedups {
             box_colliders: self.box_colliders,
             skip_held_contacts: self.skip_held_contacts,
+            enclosed_colliders: self.enclosed_colliders,
         }
     }
 
@@ -390,6 +400,7 @@ pub fn run(
         steps: config.steps,
         box_colliders: config.box_colliders,
         skip_held_contacts: config.skip_held_contacts,
+        enclosed_colliders: config.enclosed_colliders,
         estimated_seconds: estimate.seconds,
         measured_seconds,
         rows,

@@ -14,6 +14,7 @@ fn options(dir: &std::path::Path) -> BenchScaleOptions {
         out: dir.to_path_buf(),
         box_colliders: false,
         skip_held_contacts: false,
+        enclosed_colliders: false,
     }
 }
 

@@ -105,6 +105,8 @@ pub struct Speedups {
     pub box_colliders: bool,
     /// [`WorldSettings::skip_held_contacts`].
     pub skip_held_contacts: bool,
+    /// [`WorldSettings::enclosed_colliders`].
+    pub enclosed_colliders: bool,
 }
 
 /// A world of `case` with about `n` bricks bonded by `model`, and the object's id;
@@ -122,6 +124,7 @@ pub fn build(
         bond_model: model,
         box_colliders: speedups.box_colliders,
         skip_held_contacts: speedups.skip_held_contacts,
+        enclosed_colliders: speedups.enclosed_colliders,
         ..WorldSettings::default()
     });
     let cells = Vec3::new(grid[0] as f32, grid[1] as f32, grid[2] as f32);
