@@ -340,6 +340,10 @@ impl LiveObject {
     pub fn drop_fragment(&mut self, f: usize) {
         self.body[f] = None;
         self.colliders[f].clear();
+        if self.hidden.get(f).copied().unwrap_or(false) {
+            self.hidden[f] = false;
+            self.hidden_count -= 1;
+        }
         self.bonds.touch();
     }
 }
