@@ -36,15 +36,18 @@ impl Plugin for SimPlugin {
     }
 }
 
-/// Open the [`OpenAfterFirstFrame`] scene, once a frame has been drawn.
+/// Open the [`OpenAfterFirstFrame`] scene, once a frame has been drawn and the state
+/// line that says so logged ([`crate::state_log`]: at the second frame's end): at the
+/// third frame's update.
 fn open_after_first_frame(
     mut commands: Commands,
     pending: Option<Res<OpenAfterFirstFrame>>,
-    rate: Res<crate::ui::FrameRate>,
+    mut updates: Local<u32>,
     mut world: ResMut<ShatterWorld>,
 ) {
     let Some(pending) = pending else { return };
-    if rate.frames == 0 {
+    *updates += 1;
+    if *updates < 3 {
         return;
     }
     commands.remove_resource::<OpenAfterFirstFrame>();

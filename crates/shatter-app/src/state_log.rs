@@ -9,8 +9,10 @@ use crate::render::RenderStats;
 use crate::sim_bridge::ShatterWorld;
 use crate::ui::FrameRate;
 
-/// Logs `SHATTER_STATE {json}` at the first frame drawn, then every `period_secs` seconds
-/// of wall-clock time (the web page times its first frame by the first line).
+/// Logs `SHATTER_STATE {json}` once the first frame has been drawn, at the first frame
+/// whose world has fragments (a scene opened after the first frame), and every
+/// `period_secs` seconds of wall-clock time. The web page times its first frame by the
+/// first line and its scene by the first with fragments.
 #[derive(Debug, Clone)]
 pub struct StateLogPlugin {
     /// Seconds between lines.
@@ -59,10 +61,15 @@ fn log_state(
     bridge: Res<ShatterWorld>,
     rate: Res<FrameRate>,
     render: Option<Res<RenderStats>>,
+    mut scene_seen: Local<bool>,
 ) {
-    // `FrameRate` counts frames in `Update`; this runs in `Last`, so 1 is the first frame.
-    let first = rate.frames == 1;
-    if timer.0.tick(time.delta()).just_finished() || first {
+    // `FrameRate` counts frames in `Update` and this runs in `Last`. The render sub-app
+    // draws a frame after the main world's update, so at the second frame's `Last` the
+    // first frame has been drawn.
+    let first = rate.frames == 2;
+    let scene = !*scene_seen && bridge.stats().fragments > 0;
+    *scene_seen |= scene;
+    if timer.0.tick(time.delta()).just_finished() || first || scene {
         let textured = render.map_or(0, |r| r.textured_materials);
         info!("{}", state_line_with(&bridge, rate.frames, textured));
     }
