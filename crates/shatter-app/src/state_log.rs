@@ -9,8 +9,8 @@ use crate::render::RenderStats;
 use crate::sim_bridge::ShatterWorld;
 use crate::ui::FrameRate;
 
-/// Logs `SHATTER_STATE {json}` once the first frame has been drawn, at the first frame
-/// whose world has fragments (a scene opened after the first frame), and every
+/// Logs `SHATTER_STATE {json}` once the first frame has been drawn, once the first frame
+/// whose world has fragments (a scene opened after the first frame) has, and every
 /// `period_secs` seconds of wall-clock time. The web page times its first frame by the
 /// first line and its scene by the first with fragments.
 #[derive(Debug, Clone)]
@@ -61,14 +61,18 @@ fn log_state(
     bridge: Res<ShatterWorld>,
     rate: Res<FrameRate>,
     render: Option<Res<RenderStats>>,
-    mut scene_seen: Local<bool>,
+    mut scene_from: Local<Option<u64>>,
 ) {
     // `FrameRate` counts frames in `Update` and this runs in `Last`. The render sub-app
     // draws a frame after the main world's update, so at the second frame's `Last` the
     // first frame has been drawn.
     let first = rate.frames == 2;
-    let scene = !*scene_seen && bridge.stats().fragments > 0;
-    *scene_seen |= scene;
+    // The scene's line likewise waits one frame: the frame whose update opened it has
+    // then been drawn.
+    if scene_from.is_none() && bridge.stats().fragments > 0 {
+        *scene_from = Some(rate.frames);
+    }
+    let scene = *scene_from == Some(rate.frames.saturating_sub(1));
     if timer.0.tick(time.delta()).just_finished() || first || scene {
         let textured = render.map_or(0, |r| r.textured_materials);
         info!("{}", state_line_with(&bridge, rate.frames, textured));
