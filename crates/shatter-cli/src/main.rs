@@ -73,7 +73,8 @@ enum BenchCommand {
     /// default.
     Runtime(bench_runtime::BenchRuntimeArgs),
     /// Step time against the number of fragments (2k to 20k bricks by default) for both
-    /// bond models: a wall hit by shots, an explosion in a wall, a block landing.
+    /// bond models: a wall hit by shots, an explosion in a wall, a block landing, a wall
+    /// blown apart.
     Scale(bench_scale::BenchScaleArgs),
     /// Time the stress solver on a 20,000-bond graph.
     Stress(bench_stress::BenchStressArgs),

@@ -23,8 +23,12 @@ pub struct BenchScaleArgs {
     /// Bond models, comma separated: joints, clusters (joints is the slow one).
     #[arg(long, value_delimiter = ',', default_value = "joints,clusters")]
     pub models: Vec<String>,
-    /// Cases, comma separated: shots, explosion, landing.
-    #[arg(long, value_delimiter = ',', default_value = "shots,explosion,landing")]
+    /// Cases, comma separated: shots, explosion, landing, blast.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "shots,explosion,landing,blast"
+    )]
     pub cases: Vec<String>,
     /// Simulated seconds per run (the block lands at about 0.9 s).
     #[arg(long, value_name = "T", default_value_t = 2.0)]

@@ -1,8 +1,9 @@
 //! The scale benchmark (`shatter bench scale`): brick worlds of growing size (2k, 5k, 10k
 //! and 20k fragments by default) for each bond model and case ([`ScaleCase`]: a wall hit
-//! by shots, an explosion in a wall, a block shattering on landing), run for some
-//! simulated seconds. Per run: milliseconds per step (mean and worst), bodies, fragments
-//! at rest and diverged bodies; and a plot of ms/step against fragments.
+//! by shots, an explosion in a wall, a block shattering on landing, a wall blown apart),
+//! run for some simulated seconds. Per run: milliseconds per step (mean and worst),
+//! bodies, fragments at rest and diverged bodies; and a plot of ms/step against
+//! fragments.
 //!
 //! At rest: the dynamic bodies Rapier put to sleep ([`ScaleRow::sleeping_bodies`], from
 //! `Stats::sleeping_bodies`), and the fragments whose pose did not change at all over
@@ -36,7 +37,7 @@ pub struct BenchScaleOptions {
     pub sizes: Vec<usize>,
     /// Bond models, by name: joints, clusters.
     pub models: Vec<String>,
-    /// Cases, by name: shots, explosion, landing.
+    /// Cases, by name: shots, explosion, landing, blast.
     pub cases: Vec<String>,
     /// Simulated seconds per run.
     pub seconds: f64,

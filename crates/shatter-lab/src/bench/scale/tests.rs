@@ -54,7 +54,7 @@ fn bad_options_are_input_errors_before_any_world_is_built() {
         ),
         (
             |o| o.cases = vec!["shots".into(), "rain".into()],
-            "--cases: unknown case 'rain' (expected one of: shots, explosion, landing)",
+            "--cases: unknown case 'rain' (expected one of: shots, explosion, landing, blast)",
         ),
     ];
     for (change, message) in cases {
@@ -168,6 +168,23 @@ fn the_shots_and_the_explosion_break_the_wall() {
         assert!(r.bonds_broken > 0, "{case}: {r:?}");
         assert!(r.bodies > 1, "{case}: {r:?}");
     }
+}
+
+#[test]
+fn the_blast_frees_the_wall_the_explosion_only_holes() {
+    // 1,008 bricks (2.8 m × 1.8 m): the explosion's 1 m reaches the middle; the blast's
+    // half diagonal reaches every brick.
+    let explosion = row("explosion", "clusters", 1000, 0.3);
+    let blast = row("blast", "clusters", 1000, 0.3);
+    assert!(
+        blast.bodies * 2 > blast.fragments,
+        "the blast frees most bricks: {blast:?}"
+    );
+    assert!(
+        blast.bodies > explosion.bodies,
+        "{blast:?} against {explosion:?}"
+    );
+    assert_eq!(blast.diverged, 0, "{blast:?}");
 }
 
 #[test]
