@@ -140,7 +140,7 @@ pub(crate) struct Surface {
     /// A box-shaped piece collides as a cuboid ([`crate::WorldSettings::box_colliders`]).
     pub boxes: bool,
     /// Enclosed fragments get no colliders until a bond of theirs breaks
-    /// ([`LiveObject::hide`]; not [`crate::WorldSettings::enclosed_colliders`]).
+    /// ([`LiveObject::hide`]; the opposite of [`crate::WorldSettings::enclosed_colliders`]).
     pub hide_enclosed: bool,
     /// Contacts between fragments the joints hold are skipped
     /// ([`crate::bonds::held`]; joints model).
