@@ -158,11 +158,12 @@ mod tests {
     }
 
     #[test]
-    fn the_defaults_are_the_issue_s_sizes_models_and_cases() {
+    fn the_defaults_are_the_issue_s_sizes_models_and_cases_and_the_blast() {
         let o = Cli::try_parse_from(["scale"]).unwrap().bench.options();
         assert_eq!(o.sizes, [2000, 5000, 10_000, 20_000]);
         assert_eq!(o.models, ["joints", "clusters"]);
-        assert_eq!(o.cases, ["shots", "explosion", "landing"]);
+        assert_eq!(o.cases, ["shots", "explosion", "landing", "blast"]);
+        assert!(!o.box_colliders && !o.skip_held_contacts && !o.enclosed_colliders);
         assert_eq!(o.seconds, 2.0);
         assert_eq!(o.out, PathBuf::from("bench-scale"));
     }
