@@ -27,11 +27,14 @@ fn bench_scale_reports_a_row_per_case_model_and_size_and_writes_the_plots() {
     .json();
     assert_eq!(json["steps"], 6);
     let rows = json["rows"].as_array().unwrap();
-    assert_eq!(rows.len(), 3 * 2 * 2);
+    assert_eq!(rows.len(), 4 * 2 * 2);
     assert_eq!(rows[0]["case"], "shots");
     assert_eq!(rows[0]["model"], "joints");
     assert_eq!(rows[11]["case"], "landing");
     assert_eq!(rows[11]["model"], "clusters");
+    assert_eq!(rows[15]["case"], "blast");
+    assert_eq!(rows[15]["model"], "clusters");
+    assert_eq!(json["enclosed_colliders"], false);
     for row in rows {
         let fragments = row["fragments"].as_u64().unwrap();
         let grid: u64 = row["grid"]
