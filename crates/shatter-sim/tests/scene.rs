@@ -268,6 +268,19 @@ fn the_stress_budget_is_read_and_saved() {
     }
 }
 
+/// A `[world]` switch `key`: false by default, read when true, refused naming itself when
+/// given `bad`, and saved so that it loads back true.
+fn switch_reads_and_saves(key: &str, bad: &str, get: fn(&shatter_sim::WorldSettings) -> bool) {
+    let read = |text: &str| get(&Scene::parse(text).unwrap().settings);
+    let on = format!("[world]\n{key} = true\n");
+    assert!(!read(""), "{key}");
+    assert!(read(&on), "{key}");
+    let e = err(&format!("[world]\n{key} = {bad}\n"));
+    assert!(e.contains(key), "{e}");
+    let world = Scene::parse(&on).unwrap().build(None).unwrap();
+    assert!(read(&world.to_scene_toml().unwrap()), "{key}");
+}
+
 #[test]
 fn the_debris_cap_and_the_launch_limit_are_read_and_saved() {
     use shatter_sim::{DEFAULT_MAX_DEBRIS, DEFAULT_MAX_LAUNCH_SPEED};
@@ -283,26 +296,8 @@ fn the_debris_cap_and_the_launch_limit_are_read_and_saved() {
     assert_eq!(settings("[world]\nmax_debris = 300\n").0, Some(300));
     assert_eq!(settings("[world]\nmax_debris = \"none\"\n").0, None);
     assert_eq!(settings("[world]\nmax_launch_speed = 40\n").1, 40.0);
-    let boxes = |text: &str| Scene::parse(text).unwrap().settings.box_colliders;
-    assert!(!boxes(""));
-    assert!(boxes("[world]\nbox_colliders = true\n"));
-    let e = err("[world]\nbox_colliders = 1\n");
-    assert!(e.contains("box_colliders"), "{e}");
-    let world = Scene::parse("[world]\nbox_colliders = true\n")
-        .unwrap()
-        .build(None)
-        .unwrap();
-    assert!(boxes(&world.to_scene_toml().unwrap()));
-    let enclosed = |text: &str| Scene::parse(text).unwrap().settings.enclosed_colliders;
-    assert!(!enclosed(""));
-    assert!(enclosed("[world]\nenclosed_colliders = true\n"));
-    let e = err("[world]\nenclosed_colliders = \"yes\"\n");
-    assert!(e.contains("enclosed_colliders"), "{e}");
-    let world = Scene::parse("[world]\nenclosed_colliders = true\n")
-        .unwrap()
-        .build(None)
-        .unwrap();
-    assert!(enclosed(&world.to_scene_toml().unwrap()));
+    switch_reads_and_saves("box_colliders", "1", |s| s.box_colliders);
+    switch_reads_and_saves("enclosed_colliders", "\"yes\"", |s| s.enclosed_colliders);
     let tiny = |text: &str| Scene::parse(text).unwrap().settings.tiny_debris;
     assert_eq!(tiny(""), shatter_sim::DEFAULT_TINY_DEBRIS);
     assert_eq!(tiny("[world]\ntiny_debris = 0\n"), 0.0);
@@ -311,11 +306,7 @@ fn the_debris_cap_and_the_launch_limit_are_read_and_saved() {
         .build(None)
         .unwrap();
     assert_eq!(tiny(&world.to_scene_toml().unwrap()), 0.125);
-    let skip = |text: &str| Scene::parse(text).unwrap().settings.skip_held_contacts;
-    assert!(!skip(""));
-    assert!(skip("[world]\nskip_held_contacts = true\n"));
-    let e = err("[world]\nskip_held_contacts = \"yes\"\n");
-    assert!(e.contains("skip_held_contacts"), "{e}");
+    switch_reads_and_saves("skip_held_contacts", "\"yes\"", |s| s.skip_held_contacts);
     for text in [
         "[world]\nmax_debris = 300\nmax_launch_speed = 40.5\n",
         "[world]\nmax_debris = \"none\"\n",

@@ -50,14 +50,17 @@ pub(crate) fn build(
         surface,
         force_events: Some(threshold),
     };
+    if surface.hide_enclosed {
+        live.attach = Some(attach);
+    }
     let mut any = false;
     for f in 0..prepared.fracture.fragments.len() as u32 {
         // An enclosed fragment (a block's interior brick) gets its colliders when a bond
         // of it breaks.
-        if surface.hide_enclosed && live.hide(f, body, attach) {
+        if live.hide(f, body) {
             continue;
         }
-        any |= live.attach_fragment(world, object, f, body, surface, Some(threshold)) > 0;
+        any |= live.attach_fragment(world, f, body, attach) > 0;
     }
     if !any {
         for f in 0..prepared.fracture.fragments.len() {

@@ -7,7 +7,7 @@
 use glam::Vec3;
 use rapier3d::prelude::*;
 
-use crate::bonds::live::{LiveObject, Surface};
+use crate::bonds::live::{Attach, LiveObject, Surface};
 use crate::bonds::tags::{Kind, tag};
 
 /// Builds the bodies, colliders and joints of a joints-model object.
@@ -20,13 +20,18 @@ pub(crate) fn build(
     ground: RigidBodyHandle,
 ) {
     let prepared = live.prepared.clone();
+    let attach = Attach {
+        object,
+        surface,
+        force_events: None,
+    };
     for f in 0..prepared.fracture.fragments.len() as u32 {
         let body = world.insert_body(RigidBodyBuilder::dynamic().pose(pose).user_data(tag(
             Kind::Fragment,
             object,
             f,
         )));
-        if live.attach_fragment(world, object, f, body, surface, None) == 0 {
+        if live.attach_fragment(world, f, body, attach) == 0 {
             world.remove_body(body);
             continue;
         }

@@ -34,14 +34,12 @@ pub(crate) struct LiveObject {
     /// Per fragment, whether it is on its body without colliders ([`LiveObject::hide`]):
     /// an enclosed fragment whose bonds all hold (clusters model).
     pub hidden: Vec<bool>,
-    /// How many fragments are hidden (0: the passes over them are skipped).
-    pub hidden_count: usize,
-    /// How the hidden fragments' colliders are made when they are exposed.
+    /// How the hidden fragments' colliders are made when they are exposed (`None`: the
+    /// object hides none).
     pub attach: Option<Attach>,
 }
 
-/// How a fragment's colliders are made ([`LiveObject::attach_fragment`]'s arguments
-/// other than the fragment and its body).
+/// How an object's fragments get their colliders ([`LiveObject::attach_fragment`]).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Attach {
     /// The object's id.
@@ -166,30 +164,27 @@ impl LiveObject {
                 near: Vec::new(),
             },
             hidden: vec![false; n],
-            hidden_count: 0,
             attach: None,
         }
     }
 
     /// Puts fragment `f` on `body` without colliders when it is enclosed
     /// ([`Prepared::enclosed`]), has collision shapes and its bonds all hold; returns
-    /// whether it did. Its colliders are made when a bond of it breaks
-    /// ([`LiveObject::expose_broken`]); meanwhile its mass counts in the body's additional
-    /// mass properties ([`LiveObject::set_mass`]). `attach` is how they will be made.
+    /// whether it did. Its colliders are made, as [`LiveObject::attach`] says, when a bond
+    /// of it breaks ([`LiveObject::expose_broken`]); meanwhile its mass counts in the
+    /// body's additional mass properties ([`LiveObject::set_mass`]).
     ///
     /// (Disabled colliders would not do: Rapier's continuous collision detection still
     /// sweeps them, computing each one's mass properties every step the body moves fast.)
-    pub fn hide(&mut self, f: u32, body: RigidBodyHandle, attach: Attach) -> bool {
+    pub fn hide(&mut self, f: u32, body: RigidBodyHandle) -> bool {
         let i = f as usize;
         let enclosed = self.prepared.enclosed.get(i).copied().unwrap_or(false);
         let shaped = self.prepared.shapes.get(i).is_some_and(|s| !s.is_empty());
-        if !enclosed || !shaped || self.hidden[i] || self.any_broken(i) {
+        if self.attach.is_none() || !enclosed || !shaped || self.hidden[i] || self.any_broken(i) {
             return false;
         }
-        self.attach = Some(attach);
         self.body[i] = Some(body);
         self.hidden[i] = true;
-        self.hidden_count += 1;
         true
     }
 
@@ -197,7 +192,7 @@ impl LiveObject {
     /// bond, on its body: its neighbour there may now be on another body, and it can be
     /// touched. Call after the fragments' bodies are set.
     pub fn expose_broken(&mut self, world: &mut PhysicsWorld, fragments: &[u32]) {
-        let Some(attach) = self.attach.filter(|_| self.hidden_count > 0) else {
+        let Some(attach) = self.attach else {
             return;
         };
         for &f in fragments {
@@ -206,16 +201,8 @@ impl LiveObject {
                 continue;
             }
             self.hidden[i] = false;
-            self.hidden_count -= 1;
             if let Some(body) = self.body[i] {
-                self.attach_fragment(
-                    world,
-                    attach.object,
-                    f,
-                    body,
-                    attach.surface,
-                    attach.force_events,
-                );
+                self.attach_fragment(world, f, body, attach);
             }
         }
     }
@@ -232,7 +219,7 @@ impl LiveObject {
     /// its hidden fragments, which have no colliders.
     pub fn set_mass(&self, world: &mut PhysicsWorld, body: RigidBodyHandle, fragments: &[u32]) {
         let mut extra = MassProperties::default();
-        if let Some(attach) = self.attach.filter(|_| self.hidden_count > 0) {
+        if let Some(attach) = self.attach {
             for &f in fragments {
                 if self.hidden.get(f as usize).copied().unwrap_or(false) {
                     extra += self.exact_mass(f, attach.surface.density, Vec3::ZERO);
@@ -251,17 +238,20 @@ impl LiveObject {
         self.body.iter().filter(|b| b.is_some()).count()
     }
 
-    /// Attaches colliders for fragment `f` to `body`, one per valid convex piece; returns
-    /// how many were made.
+    /// Attaches colliders for fragment `f` to `body`, one per valid convex piece, made as
+    /// `attach` says; returns how many were made.
     pub fn attach_fragment(
         &mut self,
         world: &mut PhysicsWorld,
-        object: u32,
         f: u32,
         body: RigidBodyHandle,
-        surface: Surface,
-        force_events: Option<f32>,
+        attach: Attach,
     ) -> usize {
+        let Attach {
+            object,
+            surface,
+            force_events,
+        } = attach;
         let mut made = Vec::new();
         for piece in &self.prepared.shapes[f as usize] {
             let (builder, offset) = match piece.cuboid.filter(|_| surface.boxes) {
@@ -340,10 +330,7 @@ impl LiveObject {
     pub fn drop_fragment(&mut self, f: usize) {
         self.body[f] = None;
         self.colliders[f].clear();
-        if self.hidden.get(f).copied().unwrap_or(false) {
-            self.hidden[f] = false;
-            self.hidden_count -= 1;
-        }
+        self.hidden[f] = false;
         self.bonds.touch();
     }
 }
