@@ -169,19 +169,16 @@ pub fn build(
     ))?;
     match case {
         ScaleCase::Shots => schedule_shots(&mut world, size, seconds),
-        ScaleCase::Explosion => world.schedule_explosion(
+        ScaleCase::Explosion | ScaleCase::Blast => world.schedule_explosion(
             SHOT_START,
             ExplosionSpec {
                 position: Vec3::new(0.0, size.y / 2.0, size.z / 2.0 + 0.3),
-                radius: 1.0,
-                power: 1500.0,
-            },
-        ),
-        ScaleCase::Blast => world.schedule_explosion(
-            SHOT_START,
-            ExplosionSpec {
-                position: Vec3::new(0.0, size.y / 2.0, size.z / 2.0 + 0.3),
-                radius: size.truncate().length() / 2.0,
+                // The blast reaches the wall's corners from its middle.
+                radius: if case == ScaleCase::Blast {
+                    size.truncate().length() / 2.0
+                } else {
+                    1.0
+                },
                 power: 1500.0,
             },
         ),
