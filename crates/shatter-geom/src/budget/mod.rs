@@ -42,9 +42,10 @@ use std::fmt;
 pub const PROCESS_BYTES: f64 = 8.0e6;
 /// Peak bytes per point of a Delaunay tetrahedralization above its input (the packed
 /// records, the BRIO order, the walk's buffers). `shatter bench delaunay --sizes
-/// 100000,1000000,3000000` measured 203, 190 and 244 bytes per point for uniform points
-/// (beyond about two million points the records are wider).
-pub const DELAUNAY_BYTES_PER_POINT: f64 = 250.0;
+/// 100000,1000000,3000000,10000000` measured 207, 218, 188 and 188 bytes per point for
+/// uniform points (beyond about two million points the records are 27 bytes and the
+/// points are read in place, not copied).
+pub const DELAUNAY_BYTES_PER_POINT: f64 = 230.0;
 /// Bytes of one input point (a `DVec3`) and its share of the sampling buffers.
 pub const POINT_BYTES: f64 = 32.0;
 /// Points inserted per second by the Delaunay tetrahedralization, uniform points, on a

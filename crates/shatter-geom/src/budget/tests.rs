@@ -19,7 +19,7 @@ fn the_issue_example_is_refused_with_both_figures() {
         .unwrap_err();
     let text = e.to_string();
     assert!(
-        text.starts_with("3,000,000,000 points need about 846 GB"),
+        text.starts_with("3,000,000,000 points need about 786 GB"),
         "{text}"
     );
     assert!(
@@ -29,8 +29,8 @@ fn the_issue_example_is_refused_with_both_figures() {
     let BudgetError::Memory { needs_bytes, .. } = e else {
         panic!("not a memory refusal: {e}");
     };
-    // 3e9 points at 244 bytes each (bench delaunay) and their 24 bytes.
-    assert!((8.0e11..9.0e11).contains(&needs_bytes), "{needs_bytes}");
+    // 3e9 points at about 218 bytes each at most (bench delaunay) and their 24 bytes.
+    assert!((7.2e11..8.5e11).contains(&needs_bytes), "{needs_bytes}");
 }
 
 #[test]

@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::predicates::{MAX_MAGNITUDE, MIN_MAGNITUDE};
-use super::sequential::{count_distinct, sequential};
+use super::sequential::{StorePlan, count_distinct, sequential};
 use super::split::{SPLIT_MIN_POINTS, tetrahedralize_split};
 use super::types::{DelaunayError, Tetrahedralization};
 
@@ -28,15 +28,15 @@ use super::types::{DelaunayError, Tetrahedralization};
 /// assert!((t.volume(&pts) - 1.0).abs() < 1e-12);
 /// ```
 pub fn tetrahedralize(points: &[DVec3]) -> Result<Tetrahedralization, DelaunayError> {
-    tetrahedralize_within(points, usize::MAX)
+    tetrahedralize_with(points, None)
 }
 
-/// [`tetrahedralize`] with at most `narrow_limit` tetrahedra in the narrow layout before
-/// moving to the wide one (below 5: wide from the start). Tests lower it to exercise both
-/// layouts and the move on small inputs.
-pub(crate) fn tetrahedralize_within(
+/// [`tetrahedralize`] stored as `plan` says, sequentially; `None`: as the points' number
+/// says, in two halves when there are enough. Tests choose a plan to exercise every
+/// layout, the move to the wide one and the points read in place on small inputs.
+pub(crate) fn tetrahedralize_with(
     points: &[DVec3],
-    narrow_limit: usize,
+    plan: Option<StorePlan>,
 ) -> Result<Tetrahedralization, DelaunayError> {
     check_input(points)?;
     let n = points.len();
@@ -48,15 +48,14 @@ pub(crate) fn tetrahedralize_within(
             distinct: count_distinct(points),
         });
     }
-    // Large inputs on two cores; `narrow_limit` is lowered by tests of the sequential
-    // path alone.
+    // Large inputs on two cores, unless a test asks for a plan.
     if n >= SPLIT_MIN_POINTS
-        && narrow_limit == usize::MAX
+        && plan.is_none()
         && let Some(t) = tetrahedralize_split(points)
     {
         return Ok(t);
     }
-    sequential(points, narrow_limit)
+    sequential(points, plan.unwrap_or_else(|| StorePlan::for_points(n)))
 }
 
 /// Rejects non-finite coordinates and magnitudes where the predicates would not be exact.
@@ -77,6 +76,8 @@ fn check_input(points: &[DVec3]) -> Result<(), DelaunayError> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::packed::{Medium, Narrow, Tets};
+    use super::super::sequential::Start;
     use super::*;
     use crate::sampling::{Distribution, sample};
 
@@ -87,10 +88,11 @@ mod tests {
             && a.representative == b.representative
     }
 
-    /// The narrow layout, the wide one from the start, and a move from narrow to wide part
-    /// way (the narrow limit set low) build the same valid tetrahedralization.
+    /// Every layout from the start, the narrow and medium ones moving to the wide one part
+    /// way (their limit set low), and the points copied or read in place, build the same
+    /// valid tetrahedralization.
     #[test]
-    fn both_layouts_and_the_move_between_them_agree() {
+    fn every_layout_the_move_to_wide_and_both_point_readings_agree() {
         let mut sets: Vec<Vec<DVec3>> = [
             Distribution::Uniform,
             Distribution::Sphere,
@@ -102,17 +104,61 @@ mod tests {
         .collect();
         let mut dups = sample(Distribution::Ball, 500, 2);
         dups.extend_from_within(..250);
+        // Duplicates of later points too, so that a duplicate's first occurrence is
+        // sometimes inserted after it.
+        dups.extend_from_within(600..700);
+        dups.rotate_right(40);
         sets.push(dups);
         for p in &sets {
-            let narrow = tetrahedralize_within(p, usize::MAX).expect("narrow");
-            narrow.validate(p).expect("narrow is Delaunay");
-            assert!(matches!(narrow.tets, super::super::packed::Tets::Narrow(_)));
-            for limit in [0, 100, narrow.len() / 2] {
-                let other = tetrahedralize_within(p, limit).expect("wide");
-                assert!(matches!(other.tets, super::super::packed::Tets::Wide(_)));
-                other.validate(p).expect("wide is Delaunay");
-                assert!(same(&narrow, &other), "limit {limit}");
+            let auto = tetrahedralize_with(p, None).expect("auto");
+            auto.validate(p).expect("auto is Delaunay");
+            assert!(matches!(auto.tets, Tets::Narrow(_)));
+            let half = auto.len() / 2;
+            for (start, limit, in_place, layout) in [
+                (Start::Narrow, usize::MAX, true, "narrow"),
+                (Start::Medium, usize::MAX, false, "medium"),
+                (Start::Medium, usize::MAX, true, "medium"),
+                (Start::Wide, usize::MAX, false, "wide"),
+                (Start::Wide, usize::MAX, true, "wide"),
+                (Start::Narrow, 100, false, "wide"),
+                (Start::Narrow, half, true, "wide"),
+                (Start::Medium, 100, true, "wide"),
+                (Start::Medium, half, false, "wide"),
+            ] {
+                let plan = StorePlan {
+                    start,
+                    limit,
+                    in_place,
+                };
+                let other = tetrahedralize_with(p, Some(plan)).expect("planned");
+                let got = match other.tets {
+                    Tets::Narrow(_) => "narrow",
+                    Tets::Medium(_) => "medium",
+                    Tets::Wide(_) => "wide",
+                };
+                assert_eq!(got, layout, "{plan:?}");
+                other.validate(p).expect("Delaunay");
+                assert!(same(&auto, &other), "{plan:?}");
             }
         }
+    }
+
+    /// The plan the number of points gets: narrow records and a copy up to about two
+    /// million points, then the points in place, medium records up to about 16.7
+    /// million, wide ones beyond.
+    #[test]
+    fn large_inputs_read_their_points_in_place_in_larger_records() {
+        let plan = |n| {
+            let p = StorePlan::for_points(n);
+            (p.start, p.in_place)
+        };
+        let narrow = <Narrow>::MAX_POINTS;
+        assert_eq!(plan(1000), (Start::Narrow, false));
+        assert_eq!(plan(narrow), (Start::Narrow, false));
+        assert_eq!(plan(narrow + 1), (Start::Medium, true));
+        assert_eq!(plan(10_000_000), (Start::Medium, true));
+        assert_eq!(plan(Medium::MAX_POINTS), (Start::Medium, true));
+        assert_eq!(plan(Medium::MAX_POINTS + 1), (Start::Wide, true));
+        assert!(narrow > 2_000_000 && Medium::MAX_POINTS > 16_000_000);
     }
 }

@@ -23,7 +23,7 @@ pub(crate) enum Inserted {
     Full,
 }
 
-impl<S: Store> Mesh<S> {
+impl<S: Store> Mesh<'_, S> {
     /// Orientation of tetrahedron `v` with vertex `i` replaced by `p`: positive when `p`
     /// is on the same side of the face opposite `i` as vertex `i` (all of `v` finite
     /// except possibly position `i`).

@@ -2,28 +2,69 @@
 //! renumber in place, translate internal vertices to input indices.
 
 use super::packed::{Store, Tets};
-use super::storage::{INF, Mesh};
+use super::storage::INF;
 use super::types::Tetrahedralization;
+use crate::util::FastMap;
 
-/// Builds the result. `order[k]` is the input index of internal vertex `k + 1`; `dups`
-/// lists merged duplicates as (internal slot, internal vertex).
-pub(crate) fn finish<S: Store>(
-    mesh: Mesh<S>,
-    order: Vec<u32>,
-    dups: &[(u32, u32)],
+/// How the construction numbered the input points (see `storage::Points`).
+pub(crate) enum Names {
+    /// Internal vertex `k + 1` is input point `order[k]` (the points were copied in
+    /// insertion order).
+    Order(Vec<u32>),
+    /// Internal vertex `v` is input point `v - 1` (the points were read in place); there
+    /// are `points` of them.
+    InPlace { points: usize },
+}
+
+/// Builds the result from the construction's records `tets`, whose points are numbered
+/// as `names` says; `dups` lists merged duplicates as (internal slot, internal vertex).
+pub(crate) fn finish<S: Store>(tets: S, names: Names, dups: &[(u32, u32)]) -> Tetrahedralization
+where
+    Tets: From<S>,
+{
+    match names {
+        Names::Order(order) => {
+            let n = order.len();
+            let name = vertex_names(&order, dups);
+            let mut representative = vec![0u32; n];
+            fill_representative(&mut representative, &order, dups, &name);
+            drop(order);
+            assemble(tets, representative, |v| name[v as usize])
+        }
+        Names::InPlace { points } => {
+            // A vertex's name is its own index unless a later duplicate of it has a
+            // smaller one.
+            let mut first: FastMap<u32, u32> = FastMap::default();
+            for &(s, w) in dups {
+                let e = first.entry(w).or_insert(w - 1);
+                *e = (*e).min(s - 1);
+            }
+            let name = |v: u32| first.get(&v).copied().unwrap_or(v - 1);
+            let mut representative: Vec<u32> = (0..points as u32).collect();
+            for &(s, w) in dups {
+                representative[s as usize - 1] = name(w);
+                representative[w as usize - 1] = name(w);
+            }
+            if first.is_empty() {
+                assemble(tets, representative, |v| v - 1)
+            } else {
+                assemble(tets, representative, name)
+            }
+        }
+    }
+}
+
+/// Drops the infinite and free tetrahedra of `tets` and renumbers the rest in place,
+/// naming internal vertex `v` by `name(v)`.
+fn assemble<S: Store>(
+    mut tets: S,
+    representative: Vec<u32>,
+    name: impl Fn(u32) -> u32,
 ) -> Tetrahedralization
 where
     Tets: From<S>,
 {
-    let Mesh { pts, mut tets, .. } = mesh;
-    drop(pts);
-    let n = order.len();
-    let name = vertex_names(&order, dups);
-    let mut representative = vec![0u32; n];
-    fill_representative(&mut representative, &order, dups, &name);
-    drop(order);
     let (duplicates, unique_points) = duplicates_of(&representative);
-
     let total = tets.len();
     let dead = tets.vertex_marker();
     let keep = Rank::new(total, |t| {
@@ -40,7 +81,7 @@ where
         if !keep.has(t) {
             continue;
         }
-        let v = tets.verts(t).map(|x| name[x as usize]);
+        let v = tets.verts(t).map(&name);
         let a = tets.adjs(t).map(|x| {
             let nb = x >> 2;
             if keep.has(nb) { keep.rank(nb) } else { none }

@@ -5,18 +5,60 @@ use robust::Coord;
 
 use super::insert::{Inserted, Location};
 use super::order::brio_order;
-use super::output::finish;
-use super::packed::{Narrow, Store, Wide};
+use super::output::{Names, finish};
+use super::packed::{Medium, Narrow, Store, Tets, Wide};
 use super::predicates::orient;
-use super::storage::{Mesh, points_in_order, reserve_for};
+use super::storage::{Mesh, Points, points_in_order, reserve_for};
 use super::types::{DelaunayError, Tetrahedralization};
 
+/// The layout a construction starts in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Start {
+    /// 24-byte records.
+    Narrow,
+    /// 27-byte records.
+    Medium,
+    /// 32-byte records.
+    Wide,
+}
+
+/// How a sequential construction stores its work: the layout it starts in, how many
+/// records that layout may hold before the construction moves to the wide one, and
+/// whether the points are read in place rather than copied in insertion order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct StorePlan {
+    pub start: Start,
+    pub limit: usize,
+    pub in_place: bool,
+}
+
+impl StorePlan {
+    /// What `n` points get: up to [`Narrow::MAX_POINTS`] (about two million) the narrow
+    /// records and the points copied in insertion order (the copy keeps each insertion's
+    /// reads close together); beyond, the points read in place (the copy would take the
+    /// peak past 200 bytes per point), in the medium records up to their
+    /// [`Medium::MAX_POINTS`], then in the wide ones.
+    pub(crate) fn for_points(n: usize) -> Self {
+        let (start, in_place) = if n <= <Narrow>::MAX_POINTS {
+            (Start::Narrow, false)
+        } else if n <= Medium::MAX_POINTS {
+            (Start::Medium, true)
+        } else {
+            (Start::Wide, true)
+        };
+        Self {
+            start,
+            limit: usize::MAX,
+            in_place,
+        }
+    }
+}
+
 /// The tetrahedralization of `points` (checked by the caller) by one insertion after the
-/// other, with at most `narrow_limit` tetrahedra in the narrow layout before moving to the
-/// wide one (below 5: wide from the start).
+/// other, stored as `plan` says.
 pub(super) fn sequential(
     points: &[DVec3],
-    narrow_limit: usize,
+    plan: StorePlan,
 ) -> Result<Tetrahedralization, DelaunayError> {
     let n = points.len();
     if n < 4 {
@@ -25,41 +67,94 @@ pub(super) fn sequential(
         });
     }
     let order = brio_order(points);
-    let pts = points_in_order(points, &order);
-    let first = first_simplex(&pts).ok_or_else(|| {
-        let distinct = count_distinct(points);
-        if distinct < 4 {
-            DelaunayError::TooFewPoints { distinct }
-        } else {
-            DelaunayError::AllCoplanar { distinct }
-        }
-    })?;
+    let copy = if plan.in_place {
+        Vec::new()
+    } else {
+        points_in_order(points, &order)
+    };
     // Merged duplicates as (internal slot, internal vertex it coincides with).
     let mut dups: Vec<(u32, u32)> = Vec::new();
-    // Narrow records when the points allow it; wide ones from the start, or from the
-    // insertion that no longer fitted the narrow ones.
-    let (mut mesh, from) = if n <= <Narrow>::MAX_POINTS && narrow_limit >= 5 {
-        let tets = Narrow::with_capacity(reserve_for(n));
-        let mut mesh = Mesh::new(pts, tets, narrow_limit);
-        start(&mut mesh, first);
-        match insert_from(&mut mesh, (1, None), first, &mut dups) {
-            None => return Ok(finish(mesh, order, &dups)),
-            Some(full) => (mesh.into_wide(), full),
+    let tets = {
+        let pts = if plan.in_place {
+            Points::in_place(points, &order)
+        } else {
+            Points::copied(&copy)
+        };
+        let first = first_simplex(pts).ok_or_else(|| {
+            let distinct = count_distinct(points);
+            if distinct < 4 {
+                DelaunayError::TooFewPoints { distinct }
+            } else {
+                DelaunayError::AllCoplanar { distinct }
+            }
+        })?;
+        match plan.start {
+            Start::Narrow => build(
+                pts,
+                Narrow::with_capacity(reserve_for(n)),
+                plan,
+                first,
+                &mut dups,
+            ),
+            Start::Medium => build(
+                pts,
+                Medium::with_capacity(reserve_for(n)),
+                plan,
+                first,
+                &mut dups,
+            ),
+            Start::Wide => build(
+                pts,
+                Wide::with_capacity(reserve_for(n)),
+                plan,
+                first,
+                &mut dups,
+            ),
         }
-    } else {
-        let tets = Wide::with_capacity(reserve_for(n));
-        let mut mesh = Mesh::new(pts, tets, usize::MAX);
-        start(&mut mesh, first);
-        (mesh, (1, None))
+        .ok_or(DelaunayError::TooLarge { points: n })?
     };
-    match insert_from(&mut mesh, from, first, &mut dups) {
-        None => Ok(finish(mesh, order, &dups)),
-        Some(_) => Err(DelaunayError::TooLarge { points: n }),
+    drop(copy);
+    let names = if plan.in_place {
+        drop(order);
+        Names::InPlace { points: n }
+    } else {
+        Names::Order(order)
+    };
+    Ok(match tets {
+        Tets::Narrow(s) => finish(s, names, &dups),
+        Tets::Medium(s) => finish(s, names, &dups),
+        Tets::Wide(s) => finish(s, names, &dups),
+    })
+}
+
+/// Inserts every point of `pts` into the empty records `tets`, moving to the wide layout
+/// when they are full (at `plan.limit` records, or their layout's most). `None` when even
+/// the wide layout cannot hold the tetrahedra.
+fn build<S: Store>(
+    pts: Points<'_>,
+    tets: S,
+    plan: StorePlan,
+    first: [u32; 4],
+    dups: &mut Vec<(u32, u32)>,
+) -> Option<Tets>
+where
+    Tets: From<S>,
+{
+    let mut mesh = Mesh::new(pts, tets, plan.limit);
+    start(&mut mesh, first);
+    match insert_from(&mut mesh, (1, None), first, dups) {
+        None => Some(mesh.tets.into()),
+        Some(full) => {
+            let mut wide = mesh.into_wide();
+            insert_from(&mut wide, full, first, dups)
+                .is_none()
+                .then(|| wide.tets.into())
+        }
     }
 }
 
 /// Builds the first tetrahedron from the four points `first`, positively oriented.
-pub(super) fn start<S: Store>(mesh: &mut Mesh<S>, first: [u32; 4]) {
+pub(super) fn start<S: Store>(mesh: &mut Mesh<'_, S>, first: [u32; 4]) {
     let [a, b, c, d] = first;
     let p = |k: u32| &mesh.pts[k as usize];
     if orient(p(a), p(b), p(c), p(d)) > 0.0 {
@@ -69,19 +164,21 @@ pub(super) fn start<S: Store>(mesh: &mut Mesh<S>, first: [u32; 4]) {
     }
 }
 
-/// Inserts internal vertices `from..=n` (except `first`, already in), where `from` may come
-/// with the conflicting tetrahedron already found for it; merged duplicates go to `dups`.
-/// Returns the vertex that did not fit the storage, with its conflicting tetrahedron, so
-/// that the insertion resumes exactly where it stopped.
+/// Inserts the vertices inserted `from`-th to last (except `first`, already in), where
+/// the `from`-th may come with the conflicting tetrahedron already found for it; merged
+/// duplicates go to `dups`. Returns the position of the vertex that did not fit the
+/// storage, with its conflicting tetrahedron, so that the insertion resumes exactly where
+/// it stopped.
 pub(super) fn insert_from<S: Store>(
-    mesh: &mut Mesh<S>,
-    (from, found): (u32, Option<u32>),
+    mesh: &mut Mesh<'_, S>,
+    (from, found): (usize, Option<u32>),
     first: [u32; 4],
     dups: &mut Vec<(u32, u32)>,
-) -> Option<(u32, Option<u32>)> {
-    let n = mesh.pts.len() - 1;
+) -> Option<(usize, Option<u32>)> {
+    let n = mesh.pts.len();
     let mut found = found;
-    for s in from..=n as u32 {
+    for k in from..=n {
+        let s = mesh.pts.inserted(k);
         if first.contains(&s) {
             continue;
         }
@@ -97,7 +194,7 @@ pub(super) fn insert_from<S: Store>(
             },
         };
         if mesh.insert(s, t) == Inserted::Full {
-            return Some((s, Some(t)));
+            return Some((k, Some(t)));
         }
     }
     None
@@ -118,15 +215,17 @@ pub(super) fn count_distinct(points: &[DVec3]) -> usize {
     v.len()
 }
 
-/// Four affinely independent points, in insertion order: the first point, the first one
-/// distinct from it, the first one off their line and the first one off their plane.
-pub(super) fn first_simplex(pts: &[[f64; 3]]) -> Option<[u32; 4]> {
+/// Four affinely independent points (internal vertices), in insertion order: the first
+/// point, the first one distinct from it, the first one off their line and the first one
+/// off their plane.
+pub(super) fn first_simplex(pts: Points<'_>) -> Option<[u32; 4]> {
     let n = pts.len();
+    let at = |k: usize| &pts[pts.inserted(k) as usize];
     let a = 1;
-    let b = (2..n).find(|&s| pts[s] != pts[a])?;
-    let c = (b + 1..n).find(|&s| !collinear(&pts[a], &pts[b], &pts[s]))?;
-    let d = (c + 1..n).find(|&s| orient(&pts[a], &pts[b], &pts[c], &pts[s]) != 0.0)?;
-    Some([a as u32, b as u32, c as u32, d as u32])
+    let b = (2..=n).find(|&k| at(k) != at(a))?;
+    let c = (b + 1..=n).find(|&k| !collinear(at(a), at(b), at(k)))?;
+    let d = (c + 1..=n).find(|&k| orient(at(a), at(b), at(c), at(k)) != 0.0)?;
+    Some([a, b, c, d].map(|k| pts.inserted(k)))
 }
 
 /// Exact collinearity: all three coordinate-plane projections are degenerate.

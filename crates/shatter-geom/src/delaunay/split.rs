@@ -45,8 +45,8 @@ use glam::DVec3;
 use super::order::brio_order_of;
 use super::output::{Rank, duplicates_of, fill_representative, vertex_names};
 use super::packed::{Narrow, Slab, Store, Tets, Words};
-use super::sequential::{first_simplex, insert_from, sequential, start};
-use super::storage::{FLAGS, INF, MARK, Mesh, SEEN, points_in_order, reserve_for};
+use super::sequential::{StorePlan, first_simplex, insert_from, sequential, start};
+use super::storage::{FLAGS, INF, MARK, Mesh, Points, SEEN, points_in_order, reserve_for};
 use super::types::{FACES, NO_NEIGHBOR, Tetrahedralization};
 use crate::util::{FastMap, bounds};
 
@@ -155,15 +155,16 @@ fn build_half<'a>(
     bound: f64,
 ) -> Option<Built<'a>> {
     let order = brio_order_of(points, idx);
-    let pts = points_in_order(points, &order);
-    let first = first_simplex(&pts)?;
+    let xyz = points_in_order(points, &order);
+    let pts = Points::copied(&xyz);
+    let first = first_simplex(pts)?;
     let mut mesh = Mesh::new(pts, Narrow::in_slab(slab), usize::MAX);
     start(&mut mesh, first);
     let mut dups = Vec::new();
     if insert_from(&mut mesh, (1, None), first, &mut dups).is_some() {
         return None;
     }
-    let Mesh { pts, mut tets, .. } = mesh;
+    let Mesh { mut tets, .. } = mesh;
 
     // Unsafe tetrahedra, flagged MARK, by a search from the hull: only they and their
     // neighbours are tested, not every tetrahedron. It finds them all because `bound`
@@ -179,7 +180,7 @@ fn build_half<'a>(
         v[0] != dead && v.contains(&INF)
     };
     let first_infinite = (0..total as u32).find(|&t| live_infinite(t))?;
-    let mut in_gap = vec![0u64; pts.len().div_ceil(64)];
+    let mut in_gap = vec![0u64; (pts.len() + 1).div_ceil(64)];
     let mut stack = vec![first_infinite];
     tets.add_flags(first_infinite, MARK);
     while let Some(t) = stack.pop() {
@@ -203,7 +204,7 @@ fn build_half<'a>(
     let safe = Rank::new(total, |t| {
         tets.verts(t)[0] != dead && tets.flags(t) & MARK == 0
     });
-    drop(pts);
+    drop(xyz);
     let name = vertex_names(&order, &dups);
     let gap_vertices: Vec<u32> = (1..name.len())
         .filter(|&k| in_gap[k / 64] >> (k % 64) & 1 != 0)
@@ -428,7 +429,7 @@ pub(crate) fn tetrahedralize_split(points: &[DVec3]) -> Option<Tetrahedralizatio
             || rayon::join(|| renumber(bl), || renumber(br)),
             || {
                 let gap_pts: Vec<DVec3> = gap.iter().map(|&i| points[i as usize]).collect();
-                sequential(&gap_pts, usize::MAX)
+                sequential(&gap_pts, StorePlan::for_points(gap_pts.len()))
             },
         );
         (hl, hr, gap, dts)
@@ -686,7 +687,7 @@ mod tests {
             split
                 .validate(p)
                 .unwrap_or_else(|e| panic!("{name} ({} points): {e}", p.len()));
-            let seq = sequential(p, usize::MAX).expect("sequential");
+            let seq = sequential(p, StorePlan::for_points(p.len())).expect("sequential");
             assert_eq!(
                 tet_set(&split),
                 tet_set(&seq),
@@ -753,7 +754,7 @@ mod tests {
                 split
                     .validate(&p)
                     .unwrap_or_else(|e| panic!("{name}, seed {seed}: {e}"));
-                let seq = sequential(&p, usize::MAX).expect("sequential");
+                let seq = sequential(&p, StorePlan::for_points(p.len())).expect("sequential");
                 assert_eq!(tet_set(&split), tet_set(&seq), "{name}, seed {seed}");
                 assert_eq!(
                     split.representative, seq.representative,
@@ -775,7 +776,7 @@ mod tests {
         // The same tetrahedra in the same order: the split's, not the sequential path's.
         assert!(t.tetrahedra().eq(split.tetrahedra()));
         t.validate(&p).expect("Delaunay");
-        let seq = sequential(&p, usize::MAX).expect("sequential");
+        let seq = sequential(&p, StorePlan::for_points(p.len())).expect("sequential");
         assert_eq!(tet_set(&t), tet_set(&seq));
     }
 
@@ -809,7 +810,7 @@ mod tests {
             q.x = if k < 2400 { 2.5 } else { q.x * 10.0 };
         }
         assert!(tetrahedralize_split(&p).is_none());
-        sequential(&p, usize::MAX)
+        sequential(&p, StorePlan::for_points(p.len()))
             .expect("sequential")
             .validate(&p)
             .expect("Delaunay");

@@ -1,11 +1,15 @@
 //! Index-based tetrahedron storage shared by the construction steps.
 //!
 //! See the module docs of [`super`] for the layout. Vertex `0` is the infinite vertex;
-//! input points live at internal indices `1..=n` in insertion (BRIO) order.
+//! the input points are internal vertices `1..=n`, numbered in insertion (BRIO) order
+//! when they were copied in that order, or in input order when they are read in place
+//! ([`Points`]).
+
+use std::ops::Index;
 
 use glam::DVec3;
 
-use super::packed::{Narrow, Store, Wide};
+use super::packed::{Store, Wide};
 use super::types::FACES;
 
 /// The infinite vertex.
@@ -38,10 +42,64 @@ pub(crate) struct EdgeSlot {
     pub val: u32,
 }
 
+/// The points of a [`Mesh`] and the order they are inserted in: internal vertex `v`
+/// (from 1; 0 is the infinite vertex) is `self[v]`.
+///
+/// Either the points copied in insertion order ([`Points::copied`]: vertex `v` is the
+/// `v`-th inserted, so consecutive insertions read neighbouring memory), or the caller's
+/// points read in place ([`Points::in_place`]: vertex `v` is input point `v - 1`, and
+/// `order` says when it is inserted), which saves the copy's 24 bytes per point for
+/// inputs large enough that the memory matters more than the cache.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Points<'p> {
+    xyz: &'p [[f64; 3]],
+    order: Option<&'p [u32]>,
+}
+
+impl<'p> Points<'p> {
+    /// Points already in insertion order (from [`points_in_order`]).
+    pub(crate) fn copied(xyz: &'p [[f64; 3]]) -> Self {
+        Self { xyz, order: None }
+    }
+
+    /// The caller's `points`, inserted in `order` (a permutation of their indices).
+    pub(crate) fn in_place(points: &'p [DVec3], order: &'p [u32]) -> Self {
+        debug_assert_eq!(points.len(), order.len());
+        Self {
+            xyz: bytemuck::cast_slice(points),
+            order: Some(order),
+        }
+    }
+
+    /// Number of points (internal vertices `1..=len`).
+    pub(crate) fn len(&self) -> usize {
+        self.xyz.len()
+    }
+
+    /// The vertex inserted `k`-th (`1..=len`).
+    #[inline(always)]
+    pub(crate) fn inserted(&self, k: usize) -> u32 {
+        match self.order {
+            None => k as u32,
+            Some(order) => order[k - 1] + 1,
+        }
+    }
+}
+
+impl Index<usize> for Points<'_> {
+    type Output = [f64; 3];
+
+    /// Vertex `v` (not the infinite one, which has no position).
+    #[inline(always)]
+    fn index(&self, v: usize) -> &[f64; 3] {
+        &self.xyz[v - 1]
+    }
+}
+
 /// The triangulation under construction plus the scratch buffers of one insertion.
-pub(crate) struct Mesh<S> {
-    /// Point coordinates by internal index (`pts[0]` is a placeholder for the infinite vertex).
-    pub pts: Vec<[f64; 3]>,
+pub(crate) struct Mesh<'p, S> {
+    /// The points and their insertion order.
+    pub pts: Points<'p>,
     /// Every tetrahedron: its vertices (internal indices; a free slot has the vertex
     /// marker first), the flags [`MARK`] and [`SEEN`], and its adjacency
     /// `adj(t, i) = n << 2 | j`: tetrahedron `n` is across the face opposite vertex `i` of
@@ -107,19 +165,18 @@ pub(crate) fn reserve_for(points: usize) -> usize {
     points * 7 + 1024
 }
 
-/// `pts` of a [`Mesh`]: the points `order` lists, in that order, after the placeholder of
-/// the infinite vertex.
+/// The points `order` lists, in that order: what [`Points::copied`] reads.
 pub(crate) fn points_in_order(points: &[DVec3], order: &[u32]) -> Vec<[f64; 3]> {
-    let mut pts = Vec::with_capacity(order.len() + 1);
-    pts.push([f64::NAN; 3]);
-    pts.extend(order.iter().map(|&i| points[i as usize].to_array()));
-    pts
+    order
+        .iter()
+        .map(|&i| points[i as usize].to_array())
+        .collect()
 }
 
-impl<S: Store> Mesh<S> {
-    /// Empty triangulation of `pts` (internal order, with the placeholder at 0) over the
-    /// empty storage `tets`, growing to at most `limit` records.
-    pub(crate) fn new(pts: Vec<[f64; 3]>, tets: S, limit: usize) -> Self {
+impl<'p, S: Store> Mesh<'p, S> {
+    /// Empty triangulation of `pts` over the empty storage `tets`, growing to at most
+    /// `limit` records.
+    pub(crate) fn new(pts: Points<'p>, tets: S, limit: usize) -> Self {
         Self {
             limit: limit.min(tets.max_len()),
             tets,
@@ -214,10 +271,10 @@ impl<S: Store> Mesh<S> {
     }
 }
 
-impl Mesh<Narrow> {
-    /// The same triangulation in the wide layout, for when the narrow one is full.
-    pub(crate) fn into_wide(self) -> Mesh<Wide> {
-        let tets = Wide::from_narrow(&self.tets, self.tets.len());
+impl<'p, S: Store> Mesh<'p, S> {
+    /// The same triangulation in the wide layout, for when a packed one is full.
+    pub(crate) fn into_wide(self) -> Mesh<'p, Wide> {
+        let tets = Wide::from_store(&self.tets, self.tets.len());
         Mesh {
             limit: tets.max_len(),
             tets,

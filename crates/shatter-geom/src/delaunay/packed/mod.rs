@@ -1,9 +1,10 @@
 //! Tetrahedron storage: the construction's working records and the result's.
 //!
-//! Two layouts behind one trait, [`Store`]:
+//! Three layouts behind one trait, [`Store`]:
 //!
 //! - [`Narrow`]: one 24-byte record per tetrahedron, with fields at fixed bit positions,
-//!   for up to [`Narrow::MAX_POINTS`] points and [`Narrow::MAX_TETS`] tetrahedra:
+//!   for up to [`Narrow::MAX_POINTS`] points (about two million) and [`Narrow::MAX_TETS`]
+//!   tetrahedra:
 //!   ```text
 //!    bit 0    2     23    44    65    86      112     138     164     190
 //!    +-----+-----+-----+-----+-----+-------+-------+-------+-------+--+
@@ -15,16 +16,22 @@
 //!   adjacency fields share the record's last eight bytes), a shift and a mask, so access
 //!   costs about what an array of `u32` costs, in three quarters of the memory of the
 //!   wide layout.
+//! - [`Medium`]: the same in 27 bytes, 24 bits per vertex (about 16.7 million points)
+//!   and 29 per adjacency field (a 27-bit tetrahedron, 134 million): the layout of
+//!   large inputs, where the 32 bytes of the wide one would take the peak past 200 bytes
+//!   per point.
 //! - [`Wide`]: two arrays of `[u32; 4]` (vertices with the flags in the top bits of `v3`,
 //!   and adjacency), 32 bytes per tetrahedron, for anything larger.
 //!
-//! A construction starts narrow when the points allow it and moves to the wide layout if
-//! the tetrahedra outgrow it ([`Wide::from_narrow`]).
+//! A construction starts in the smallest layout the points allow and moves to the wide
+//! one if the tetrahedra outgrow it ([`Wide::from_store`]).
 
 mod narrow;
 mod wide;
 
-pub(crate) use narrow::{Narrow, Slab, Words};
+#[cfg(test)]
+use narrow::{Bits27, Layout};
+pub(crate) use narrow::{Medium, Narrow, Slab, Words};
 pub(crate) use wide::Wide;
 
 /// The operations the construction and the result need from a tetrahedron storage.
@@ -73,6 +80,7 @@ pub(crate) trait Store: Sized {
 #[derive(Clone, Debug)]
 pub(crate) enum Tets {
     Narrow(Narrow),
+    Medium(Medium),
     Wide(Wide),
 }
 
@@ -88,6 +96,12 @@ impl From<Narrow> for Tets {
     }
 }
 
+impl From<Medium> for Tets {
+    fn from(m: Medium) -> Self {
+        Self::Medium(m)
+    }
+}
+
 impl From<Wide> for Tets {
     fn from(w: Wide) -> Self {
         Self::Wide(w)
@@ -99,6 +113,7 @@ macro_rules! with_store {
     ($tets:expr, $s:ident => $body:expr) => {
         match $tets {
             Tets::Narrow($s) => $body,
+            Tets::Medium($s) => $body,
             Tets::Wide($s) => $body,
         }
     };

@@ -1,5 +1,5 @@
-//! Both layouts: every field written and read back without disturbing the others, and
-//! narrow records converted to wide unchanged.
+//! Every layout: every field written and read back without disturbing the others, and
+//! packed records converted to wide unchanged.
 
 use super::*;
 
@@ -57,14 +57,26 @@ fn narrow_fields_do_not_disturb_each_other() {
 }
 
 #[test]
+fn medium_fields_do_not_disturb_each_other() {
+    let max_t = Medium::MAX_TETS as u32 - 1;
+    assert_eq!(std::mem::size_of::<<Bits27 as Layout>::Rec>(), 27);
+    const { assert!(Medium::MAX_POINTS >= 16_000_000 && Medium::MAX_TETS >= 134_000_000) };
+    fields_do_not_disturb_each_other(Medium::with_capacity(3), Medium::MAX_POINTS as u32, max_t);
+}
+
+#[test]
 fn wide_fields_do_not_disturb_each_other() {
     let max_t = Wide::MAX_TETS as u32 - 1;
     fields_do_not_disturb_each_other(Wide::with_capacity(3), (1 << 30) - 2, max_t);
 }
 
 #[test]
-fn narrow_records_convert_to_wide_unchanged() {
-    let mut n = Narrow::with_capacity(8);
+fn packed_records_convert_to_wide_unchanged() {
+    converts_to_wide_unchanged(Narrow::with_capacity(8));
+    converts_to_wide_unchanged(Medium::with_capacity(8));
+}
+
+fn converts_to_wide_unchanged(mut n: impl Store) {
     for t in 0..7u32 {
         n.push();
         n.set_verts(t, [t, t + 1, t + 2, 100]);
@@ -75,7 +87,7 @@ fn narrow_records_convert_to_wide_unchanged() {
     }
     n.set_verts(6, [n.vertex_marker(); 4]);
     n.add_flags(3, 1);
-    let w = Wide::from_narrow(&n, 0);
+    let w = Wide::from_store(&n, 0);
     assert_eq!(w.len(), 7);
     for t in 0..6u32 {
         assert_eq!(w.verts(t), [t, t + 1, t + 2, 100]);

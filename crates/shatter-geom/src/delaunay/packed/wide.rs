@@ -1,7 +1,6 @@
-//! The wide layout: two arrays of `[u32; 4]`, for anything the narrow one cannot hold.
+//! The wide layout: two arrays of `[u32; 4]`, for anything the packed ones cannot hold.
 
 use super::Store;
-use super::narrow::Narrow;
 
 /// Bit of `v3` marking a [`Wide`] record as in the current cavity; the next one down marks
 /// it as tested (the flags `1` and `2` of [`Store`]).
@@ -19,8 +18,9 @@ impl Wide {
     /// Most tetrahedra (`t << 2 | face` fits a `u32` below the marker).
     pub(crate) const MAX_TETS: usize = (1 << 30) - 1;
 
-    /// The same records, one by one, in the wide layout (markers stay markers).
-    pub(crate) fn from_narrow(n: &Narrow, spare: usize) -> Self {
+    /// The same records, one by one, in the wide layout (markers stay markers), with room
+    /// for `spare` more.
+    pub(crate) fn from_store(n: &impl Store, spare: usize) -> Self {
         let mut w = Self::with_capacity(n.len() + spare);
         let (vm, am) = (n.vertex_marker(), n.adjacency_marker());
         for t in 0..n.len() as u32 {
