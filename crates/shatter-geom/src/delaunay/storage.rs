@@ -269,9 +269,7 @@ impl<'p, S: Store> Mesh<'p, S> {
         }
         self.last = 0;
     }
-}
 
-impl<'p, S: Store> Mesh<'p, S> {
     /// The same triangulation in the wide layout, for when a packed one is full.
     pub(crate) fn into_wide(self) -> Mesh<'p, Wide> {
         let tets = Wide::from_store(&self.tets, self.tets.len());
