@@ -8,7 +8,7 @@ use glam::DVec3;
 use crate::fracture::Bond;
 use crate::fracture::kernel::Piece;
 use crate::fracture::kernel::union::union;
-use crate::util::{FastMap, UnionFind};
+use crate::util::{ShellGrid, UnionFind};
 
 /// What merging did beyond the plain case.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -240,94 +240,45 @@ fn union_without_flat(parts: &[&Piece], eps: f64) -> Option<Piece> {
     (!joined.has_flat_triangle()).then_some(joined)
 }
 
-/// The vertices of a set of pieces bucketed on a uniform grid, each with its piece, for
-/// the vertex nearest a point.
+/// The vertices of a set of pieces on a [`ShellGrid`], each with its piece, for the vertex
+/// nearest a point.
 struct VertexGrid {
-    lo: DVec3,
-    cell: f64,
-    /// Cells along each axis.
-    dims: [i64; 3],
-    buckets: FastMap<[i64; 3], Vec<(DVec3, u32)>>,
+    /// Every vertex with its piece.
+    verts: Vec<(DVec3, u32)>,
+    grid: ShellGrid,
 }
 
 impl VertexGrid {
     fn new(pieces: &[Option<Piece>]) -> VertexGrid {
-        let all = || {
-            pieces
-                .iter()
-                .enumerate()
-                .filter_map(|(h, p)| p.as_ref().map(|p| (h, p)))
-                .flat_map(|(h, p)| p.pos.iter().map(move |&q| (q, h as u32)))
-        };
-        let (mut lo, mut hi, mut count) = (DVec3::INFINITY, DVec3::NEG_INFINITY, 0usize);
-        for (q, _) in all() {
+        let verts: Vec<(DVec3, u32)> = pieces
+            .iter()
+            .enumerate()
+            .filter_map(|(h, p)| p.as_ref().map(|p| (h, p)))
+            .flat_map(|(h, p)| p.pos.iter().map(move |&q| (q, h as u32)))
+            .collect();
+        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+        for &(q, _) in &verts {
             lo = lo.min(q);
             hi = hi.max(q);
-            count += 1;
         }
-        let extent = (hi - lo).max(DVec3::ZERO);
-        // About two vertices per cell, were they spread through the box (a flat box
-        // counted a thousandth of its size thick).
-        let thin = extent.max_element() * 1e-3;
-        let volume = extent.max(DVec3::splat(thin)).element_product();
-        let cell = (volume / (count.max(1) as f64 / 2.0))
-            .cbrt()
-            .max(extent.max_element() / 4096.0)
-            .max(f64::MIN_POSITIVE);
-        let dims = [0, 1, 2].map(|k| ((extent[k] / cell).floor() as i64 + 1).max(1));
-        let mut grid = VertexGrid {
-            lo,
-            cell,
-            dims,
-            buckets: FastMap::default(),
-        };
-        for (q, h) in all() {
-            let key = grid.key(q);
-            grid.buckets.entry(key).or_default().push((q, h));
+        if verts.is_empty() {
+            (lo, hi) = (DVec3::ZERO, DVec3::ONE);
         }
-        grid
-    }
-
-    fn key(&self, q: DVec3) -> [i64; 3] {
-        let k = ((q - self.lo) / self.cell).floor();
-        [0, 1, 2].map(|i| (k[i] as i64).clamp(0, self.dims[i] - 1))
+        // About two vertices per cell.
+        let mut grid = ShellGrid::new(lo, hi, verts.len() as f64 / 2.0);
+        for (k, &(q, _)) in verts.iter().enumerate() {
+            grid.insert(k as u32, q, q);
+        }
+        VertexGrid { verts, grid }
     }
 
     /// The group (as `accept` maps a vertex's piece, `None` to skip it) of the vertex
-    /// nearest `p`, searched in shells of cells outward until no nearer one can be left.
+    /// nearest `p` (the first of equals, in piece order).
     fn nearest(&self, p: DVec3, mut accept: impl FnMut(u32) -> Option<usize>) -> Option<usize> {
-        let c = self.key(p);
-        let mut best: Option<(f64, usize)> = None;
-        let reach = self.dims.iter().copied().max().unwrap_or(1);
-        for r in 0..=reach {
-            for dx in -r..=r {
-                for dy in -r..=r {
-                    for dz in -r..=r {
-                        if dx.abs().max(dy.abs()).max(dz.abs()) != r {
-                            continue;
-                        }
-                        let Some(bucket) = self.buckets.get(&[c[0] + dx, c[1] + dy, c[2] + dz])
-                        else {
-                            continue;
-                        };
-                        for &(q, h) in bucket {
-                            let d2 = q.distance_squared(p);
-                            if best.is_none_or(|(b, _)| d2 < b)
-                                && let Some(g) = accept(h)
-                            {
-                                best = Some((d2, g));
-                            }
-                        }
-                    }
-                }
-            }
-            // Beyond shell r, every vertex is at least r cells away.
-            if let Some((b, _)) = best
-                && b <= (r as f64 * self.cell).powi(2)
-            {
-                break;
-            }
-        }
-        best.map(|(_, g)| g)
+        let k = self.grid.nearest(p, |k| {
+            let (q, h) = self.verts[k as usize];
+            accept(h).map(|_| q.distance_squared(p))
+        })?;
+        accept(self.verts[k as usize].1)
     }
 }
