@@ -9,7 +9,7 @@
 //! let limits = Limits { memory_bytes: Some(24e9 as u64), seconds: None, memory_source: "test" };
 //! let huge = Estimate::delaunay(3_000_000_000);
 //! let err = limits.check("3,000,000,000 points", &huge).unwrap_err();
-//! assert!(err.to_string().starts_with("3,000,000,000 points need about 846 GB"), "{err}");
+//! assert!(err.to_string().starts_with("3,000,000,000 points need about 786 GB"), "{err}");
 //! assert!(limits.check("1,000 points", &Estimate::delaunay(1000)).is_ok());
 //! ```
 //!
