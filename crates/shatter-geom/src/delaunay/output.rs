@@ -45,11 +45,7 @@ where
                 representative[s as usize - 1] = name(w);
                 representative[w as usize - 1] = name(w);
             }
-            if first.is_empty() {
-                assemble(tets, representative, |v| v - 1)
-            } else {
-                assemble(tets, representative, name)
-            }
+            assemble(tets, representative, name)
         }
     }
 }

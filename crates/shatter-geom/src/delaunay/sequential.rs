@@ -6,7 +6,7 @@ use robust::Coord;
 use super::insert::{Inserted, Location};
 use super::order::brio_order;
 use super::output::{Names, finish};
-use super::packed::{Medium, Narrow, Store, Tets, Wide};
+use super::packed::{Medium, Narrow, Store, Tets, Wide, with_store};
 use super::predicates::orient;
 use super::storage::{Mesh, Points, points_in_order, reserve_for};
 use super::types::{DelaunayError, Tetrahedralization};
@@ -88,30 +88,14 @@ pub(super) fn sequential(
                 DelaunayError::AllCoplanar { distinct }
             }
         })?;
-        match plan.start {
-            Start::Narrow => build(
-                pts,
-                Narrow::with_capacity(reserve_for(n)),
-                plan,
-                first,
-                &mut dups,
-            ),
-            Start::Medium => build(
-                pts,
-                Medium::with_capacity(reserve_for(n)),
-                plan,
-                first,
-                &mut dups,
-            ),
-            Start::Wide => build(
-                pts,
-                Wide::with_capacity(reserve_for(n)),
-                plan,
-                first,
-                &mut dups,
-            ),
-        }
-        .ok_or(DelaunayError::TooLarge { points: n })?
+        let cap = reserve_for(n);
+        let empty: Tets = match plan.start {
+            Start::Narrow => Narrow::with_capacity(cap).into(),
+            Start::Medium => Medium::with_capacity(cap).into(),
+            Start::Wide => Wide::with_capacity(cap).into(),
+        };
+        with_store!(empty, tets => build(pts, tets, plan, first, &mut dups))
+            .ok_or(DelaunayError::TooLarge { points: n })?
     };
     drop(copy);
     let names = if plan.in_place {
@@ -120,11 +104,7 @@ pub(super) fn sequential(
     } else {
         Names::Order(order)
     };
-    Ok(match tets {
-        Tets::Narrow(s) => finish(s, names, &dups),
-        Tets::Medium(s) => finish(s, names, &dups),
-        Tets::Wide(s) => finish(s, names, &dups),
-    })
+    Ok(with_store!(tets, s => finish(s, names, &dups)))
 }
 
 /// Inserts every point of `pts` into the empty records `tets`, moving to the wide layout

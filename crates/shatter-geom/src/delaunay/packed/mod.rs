@@ -118,6 +118,7 @@ macro_rules! with_store {
         }
     };
 }
+pub(crate) use with_store;
 
 impl Tets {
     pub(crate) fn len(&self) -> usize {
