@@ -19,7 +19,7 @@ pub(crate) struct ShellGrid {
 impl ShellGrid {
     /// An empty grid over the box `lo..hi` of about `target` cells (at most 2^21; a flat
     /// box gets one layer).
-    pub(crate) fn new(lo: DVec3, hi: DVec3, target: f64) -> ShellGrid {
+    fn new(lo: DVec3, hi: DVec3, target: f64) -> ShellGrid {
         let ext = (hi - lo).max(DVec3::ZERO);
         let target = if target.is_finite() {
             target.clamp(1.0, MAX_CELLS)
@@ -49,6 +49,17 @@ impl ShellGrid {
             dims,
             cells: vec![Vec::new(); (dims[0] * dims[1] * dims[2]) as usize],
         }
+    }
+
+    /// An empty grid over the bounds of `points` (the unit box when there are none) of
+    /// about `target` cells.
+    pub(crate) fn over(points: &[DVec3], target: f64) -> ShellGrid {
+        let (lo, hi) = if points.is_empty() {
+            (DVec3::ZERO, DVec3::ONE)
+        } else {
+            super::bounds(points)
+        };
+        ShellGrid::new(lo, hi, target)
     }
 
     /// Lists item `id` in every cell its bounds `min..max` overlap.
@@ -143,8 +154,7 @@ mod tests {
                 pts.push(DVec3::new(x as f64, y as f64 * 0.5, z as f64 * 2.0));
             }
         }
-        let (lo, hi) = crate::util::bounds(&pts);
-        let mut grid = ShellGrid::new(lo, hi, pts.len() as f64 / 2.0);
+        let mut grid = ShellGrid::over(&pts, pts.len() as f64 / 2.0);
         for (k, &q) in pts.iter().enumerate() {
             grid.insert(k as u32, q, q);
         }

@@ -17,12 +17,7 @@ impl NearestTriangle {
             .iter()
             .map(|t| t.map(|i| positions[i as usize]))
             .collect();
-        let (lo, hi) = if tris.is_empty() {
-            (DVec3::ZERO, DVec3::ONE)
-        } else {
-            crate::util::bounds(positions)
-        };
-        let mut grid = ShellGrid::new(lo, hi, tris.len() as f64);
+        let mut grid = ShellGrid::over(positions, tris.len() as f64);
         for (t, tri) in tris.iter().enumerate() {
             grid.insert(
                 t as u32,

@@ -243,42 +243,34 @@ fn union_without_flat(parts: &[&Piece], eps: f64) -> Option<Piece> {
 /// The vertices of a set of pieces on a [`ShellGrid`], each with its piece, for the vertex
 /// nearest a point.
 struct VertexGrid {
-    /// Every vertex with its piece.
-    verts: Vec<(DVec3, u32)>,
+    /// Every vertex's position, and its piece.
+    pos: Vec<DVec3>,
+    piece: Vec<u32>,
     grid: ShellGrid,
 }
 
 impl VertexGrid {
     fn new(pieces: &[Option<Piece>]) -> VertexGrid {
-        let verts: Vec<(DVec3, u32)> = pieces
+        let (pos, piece): (Vec<DVec3>, Vec<u32>) = pieces
             .iter()
             .enumerate()
             .filter_map(|(h, p)| p.as_ref().map(|p| (h, p)))
             .flat_map(|(h, p)| p.pos.iter().map(move |&q| (q, h as u32)))
-            .collect();
-        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-        for &(q, _) in &verts {
-            lo = lo.min(q);
-            hi = hi.max(q);
-        }
-        if verts.is_empty() {
-            (lo, hi) = (DVec3::ZERO, DVec3::ONE);
-        }
+            .unzip();
         // About two vertices per cell.
-        let mut grid = ShellGrid::new(lo, hi, verts.len() as f64 / 2.0);
-        for (k, &(q, _)) in verts.iter().enumerate() {
+        let mut grid = ShellGrid::over(&pos, pos.len() as f64 / 2.0);
+        for (k, &q) in pos.iter().enumerate() {
             grid.insert(k as u32, q, q);
         }
-        VertexGrid { verts, grid }
+        VertexGrid { pos, piece, grid }
     }
 
     /// The group (as `accept` maps a vertex's piece, `None` to skip it) of the vertex
     /// nearest `p` (the first of equals, in piece order).
     fn nearest(&self, p: DVec3, mut accept: impl FnMut(u32) -> Option<usize>) -> Option<usize> {
         let k = self.grid.nearest(p, |k| {
-            let (q, h) = self.verts[k as usize];
-            accept(h).map(|_| q.distance_squared(p))
+            accept(self.piece[k as usize]).map(|_| self.pos[k as usize].distance_squared(p))
         })?;
-        accept(self.verts[k as usize].1)
+        accept(self.piece[k as usize])
     }
 }
