@@ -63,6 +63,10 @@ fn the_glb_reads_back_with_the_bonds_the_json_printed() {
     }
     let volume: f64 = fracture.fragments.iter().map(|f| f.volume).sum();
     assert!(close(volume, json["fragments_volume"].as_f64().unwrap()));
+    // The collision shapes travel with the asset (an OBJ has none, and gets none made).
+    for (i, f) in fracture.fragments.iter().enumerate() {
+        assert!(!f.convex_pieces.is_empty(), "fragment {i}: no convex piece");
+    }
     // The material preset and its thresholds, and the lowest fragments as anchors.
     assert_eq!(meta.material.as_deref(), Some("stone"));
     let t = meta.thresholds.unwrap();
@@ -76,6 +80,31 @@ fn the_glb_reads_back_with_the_bonds_the_json_printed() {
     assert!(doc.extensions_used().any(|e| e == "SHATTER_fracture"));
     // And a mesh file shatter itself reads (and could fracture again).
     shatter(dir.path(), &["fracture", "bird.glb", "--pieces", "4"]).ok();
+}
+
+#[test]
+fn the_obj_the_glb_and_no_file_report_the_same_fracture() {
+    // Only the GLB gets convex pieces made; the fragments are the same without.
+    let dir = tempfile::tempdir().unwrap();
+    let run = |out: Option<&str>| {
+        let mut args = vec![
+            "fracture", "--shape", "bird", "--pieces", "25", "--seed", "8",
+        ];
+        if let Some(out) = out {
+            args.extend(["--out", out]);
+        }
+        args.extend(["--json", "--json-bonds"]);
+        let mut json = shatter(dir.path(), &args).ok().json();
+        let map = json.as_object_mut().unwrap();
+        for key in ["millis", "peak_rss_bytes", "estimate"] {
+            map.remove(key);
+        }
+        json
+    };
+    let glb = run(Some("bird.glb"));
+    assert!(glb["fragments"].as_u64().unwrap() > 10, "{glb}");
+    assert_eq!(run(Some("bird.obj")), glb);
+    assert_eq!(run(None), glb);
 }
 
 #[test]

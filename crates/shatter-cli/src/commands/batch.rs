@@ -127,6 +127,7 @@ fn one(
 ) -> FileResult {
     let config = FractureConfig {
         source: MeshSource::File(input.to_path_buf()),
+        convex_pieces: format == MeshFormat::Glb,
         ..config.clone()
     };
     let work = || -> Result<FractureReport, CliError> {

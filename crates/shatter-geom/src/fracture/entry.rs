@@ -120,6 +120,37 @@ pub fn fracture_model(model: &Model, params: &FractureParams) -> Result<Fracture
     fracture_model_with(model, params, Convex::Decomposed)
 }
 
+/// [`fracture_model`] without the fragments' convex pieces: every
+/// [`Fragment::convex_pieces`] and [`Fragment::convex_hulls`] is empty, the rest (surfaces,
+/// attributes, materials, bonds, volumes) is the same. For a result that is only written
+/// as meshes (an OBJ carries no convex pieces) and not simulated: decomposing each
+/// fragment into convex pieces for collision is about 40 % of a Voronoi fracture's work.
+///
+/// ```
+/// use shatter_geom::fracture::{fracture_model, fracture_model_surfaces, FractureParams};
+/// use shatter_geom::{model::Model, shapes};
+///
+/// let model = Model::from_mesh(shapes::bird());
+/// let params = FractureParams::voronoi(20, 3);
+/// let surfaces = fracture_model_surfaces(&model, &params)?;
+/// let mut full = fracture_model(&model, &params)?;
+/// assert!(surfaces.fragments.iter().all(|f| f.convex_pieces.is_empty()));
+/// // The same fracture, but for the pieces.
+/// for f in &mut full.fragments {
+///     assert!(!f.convex_pieces.is_empty());
+///     f.convex_pieces.clear();
+///     f.convex_hulls.clear();
+/// }
+/// assert_eq!(surfaces, full);
+/// # Ok::<(), shatter_geom::fracture::FractureError>(())
+/// ```
+pub fn fracture_model_surfaces(
+    model: &Model,
+    params: &FractureParams,
+) -> Result<Fracture, FractureError> {
+    fracture_model_with(model, params, Convex::None)
+}
+
 /// Fractures fragment `f` of `fracture`: [`fracture_model`] of the fragment (its mesh,
 /// corner attributes and materials), whose new fragments take their convex pieces from
 /// the fragment's own.
@@ -219,6 +250,8 @@ fn fracture_model_with(
 /// Where the fragments' convex pieces come from.
 #[derive(Debug, Clone, Copy)]
 enum Convex<'a> {
+    /// None: the fragments' surfaces only ([`fracture_model_surfaces`]).
+    None,
     /// Each fragment decomposed on its own ([`convex_pieces`]).
     Decomposed,
     /// Each fragment decomposed finely, with the pieces' hulls ([`fine_pieces`]).
@@ -230,6 +263,7 @@ enum Convex<'a> {
 
 /// [`Convex`] in the local frame.
 enum LocalConvex {
+    None,
     Decomposed,
     Fine,
     Clipped(Vec<Part>),
@@ -240,6 +274,7 @@ impl LocalConvex {
     /// that spans no volume, is left out).
     fn of(convex: Convex<'_>, frame: &Frame) -> LocalConvex {
         match convex {
+            Convex::None => LocalConvex::None,
             Convex::Decomposed => LocalConvex::Decomposed,
             Convex::Fine => LocalConvex::Fine,
             Convex::Clipped(points, hulls) => {
@@ -459,7 +494,7 @@ fn fracture_local(
                 }
             };
             let (pieces, bonds) = slice(&piece, &planes, eps);
-            finish_cut(pieces, bonds, volume, eps, &mut warnings)
+            finish_cut(pieces, bonds, volume, eps, convex, &mut warnings)
         }
         Method::Grid { cells, voids } => {
             let total = cells
@@ -477,11 +512,19 @@ fn fracture_local(
                 // other methods, but a fine grid's whole cells are not slivers: at most
                 // a tenth of a cell is.
                 let sliver = volume.min(0.1 * grid.cell_volume() / SLIVER_VOLUME_FRACTION);
-                finish_cut(pieces, bonds, sliver, eps, &mut warnings)
+                finish_cut(pieces, bonds, sliver, eps, convex, &mut warnings)
             }
         }
     };
-    let fragments: Vec<Fragment> = fragments;
+    let mut fragments: Vec<Fragment> = fragments;
+    if matches!(convex, LocalConvex::None) {
+        // The methods that make their pieces as they go (a tetrahedron, a brick) make
+        // them at no cost; the surfaces-only result has none, whatever the method.
+        for f in &mut fragments {
+            f.convex_pieces = Vec::new();
+            f.convex_hulls = Vec::new();
+        }
+    }
     if fragments.is_empty() {
         return Err(FractureError::NoFragments);
     }
@@ -501,13 +544,15 @@ fn check_points(list: &[DVec3], what: &'static str) -> Result<(), FractureError>
     }
 }
 
-/// Fragments of a cut method: small pieces merged into neighbours, then built; with
-/// each fragment's triangle tags.
+/// Fragments of a cut method: small pieces merged into neighbours, then built (each
+/// decomposed into convex pieces unless `convex` asks for none); with each fragment's
+/// triangle tags.
 fn finish_cut(
     pieces: Vec<Piece>,
     bonds: Vec<Bond>,
     volume: f64,
     eps: f64,
+    convex: &LocalConvex,
     warnings: &mut Vec<String>,
 ) -> (Vec<Fragment>, Vec<Vec<u64>>, Vec<Bond>) {
     let n = pieces.len();
@@ -517,7 +562,11 @@ fn finish_cut(
         seed: vec![0; n],
         planes: Vec::new(),
     };
-    finish_cells(cells, volume, eps, &LocalConvex::Decomposed, warnings)
+    let convex = match convex {
+        LocalConvex::None => &LocalConvex::None,
+        _ => &LocalConvex::Decomposed,
+    };
+    finish_cells(cells, volume, eps, convex, warnings)
 }
 
 /// [`finish_cut`] of a Voronoi cut, the fragments' convex pieces made as `convex` says
@@ -580,6 +629,7 @@ fn finish_cells(
 /// clipped, by `cells`, the planes of the cells it was made of).
 fn built_fragment(p: &Piece, convex: &LocalConvex, cells: &[&[Plane]], eps: f64) -> Fragment {
     match convex {
+        LocalConvex::None => fragment_without_pieces(p),
         LocalConvex::Decomposed => fragment(p),
         LocalConvex::Fine => {
             let mut f = fragment_without_pieces(p);

@@ -32,7 +32,7 @@ mod validate;
 
 pub use attributes::interior_material;
 pub use check::VOLUME_TOLERANCE;
-pub use entry::{fracture, fracture_fragment, fracture_model, intact};
+pub use entry::{fracture, fracture_fragment, fracture_model, fracture_model_surfaces, intact};
 pub use error::{FractureError, InvalidFracture};
 pub(crate) use methods::grid::fills_box;
 pub use methods::tetra::{SLIVER_QUALITY, SLIVER_VOLUME_FRACTION};

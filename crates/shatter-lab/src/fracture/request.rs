@@ -34,6 +34,10 @@ pub struct FractureConfig {
     pub seed: u64,
     /// Refuse a file that is not a valid solid instead of repairing it.
     pub strict: bool,
+    /// Decompose the fragments into convex pieces, their collision shapes (a GLB carries
+    /// them, an OBJ does not). Without, the fracture is the same but for the pieces, and
+    /// about 40 % faster ([`fracture_model_surfaces`](shatter_geom::fracture::fracture_model_surfaces)).
+    pub convex_pieces: bool,
 }
 
 impl FractureConfig {
@@ -46,6 +50,7 @@ impl FractureConfig {
             method,
             seed,
             strict: true,
+            convex_pieces: true,
         }
     }
 

@@ -19,7 +19,12 @@ pub fn fracture(
         method: config.method.clone(),
         seed: config.seed,
     };
-    let mut result = shatter_geom::fracture::fracture_model(model, &params).map_err(|e| {
+    let result = if config.convex_pieces {
+        shatter_geom::fracture::fracture_model(model, &params)
+    } else {
+        shatter_geom::fracture::fracture_model_surfaces(model, &params)
+    };
+    let mut result = result.map_err(|e| {
         let message = format!("{}: {e}", config.describe());
         // An invalid result is shatter's error, not the input's (exit 1, not 2).
         if matches!(e, shatter_geom::fracture::FractureError::Invalid(_)) {

@@ -395,7 +395,8 @@ fn finish(
             .filter_map(|p| clip_piece(p, &cut, tol))
             .collect();
     }
-    if pieces.is_empty() {
+    // (A fragment without pieces, of a surfaces-only fracture, has none to lose.)
+    if pieces.is_empty() && !f.convex_pieces.is_empty() {
         return None;
     }
     new.convex_pieces = pieces;
