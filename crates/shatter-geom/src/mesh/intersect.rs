@@ -80,14 +80,15 @@ fn coplanar_meet(t: [DVec3; 3], u: [DVec3; 3]) -> bool {
         || point_in_triangle_2d(t2[0], u2[0], u2[1], u2[2])
 }
 
-/// Closed segment `de` meets the closed triangle `abc`, whose plane the segment does not
-/// lie in.
-fn segment_meets_triangle(d: DVec3, e: DVec3, [a, b, c]: [DVec3; 3]) -> bool {
-    let (od, oe) = (o3(a, b, c, d), o3(a, b, c, e));
-    if (od > 0.0 && oe > 0.0) || (od < 0.0 && oe < 0.0) || (od == 0.0 && oe == 0.0) {
-        return false;
-    }
-    let s = [o3(d, e, a, b), o3(d, e, b, c), o3(d, e, c, a)];
+/// Whether a segment whose ends are at orientations `od` and `oe` from a triangle's
+/// plane reaches the plane without lying in it.
+fn reaches_plane(od: f64, oe: f64) -> bool {
+    !((od > 0.0 && oe > 0.0) || (od < 0.0 && oe < 0.0) || (od == 0.0 && oe == 0.0))
+}
+
+/// Whether three orientations of a segment against a triangle's edges agree (none of
+/// the opposite sign): the segment's line passes through the closed triangle.
+fn one_sign(s: [f64; 3]) -> bool {
     s.iter().all(|&x| x >= 0.0) || s.iter().all(|&x| x <= 0.0)
 }
 
@@ -102,12 +103,35 @@ pub(crate) fn triangles_meet(t: [DVec3; 3], u: [DVec3; 3]) -> bool {
     if u_vs_t.iter().all(|&x| x == 0.0) {
         return coplanar_meet(t, u);
     }
-    if strictly_one_side(t.map(|p| o3(u[0], u[1], u[2], p))) {
+    let t_vs_u = t.map(|p| o3(u[0], u[1], u[2], p));
+    if strictly_one_side(t_vs_u) {
         return false;
     }
-    // Non-coplanar: if they meet, an edge of one meets the other.
-    (0..3).any(|i| segment_meets_triangle(t[i], t[(i + 1) % 3], u))
-        || (0..3).any(|i| segment_meets_triangle(u[i], u[(i + 1) % 3], t))
+    // Non-coplanar: if they meet, an edge of one meets the other. An edge reaching the
+    // other's plane (its ends' sides are the orientations above) meets the closed
+    // triangle when its orientations against the triangle's three edges agree. The
+    // orientation of t's edge i against u's edge j, `orient3d(tᵢ, tᵢ₊₁, uⱼ, uⱼ₊₁)`, has
+    // the sign of u's edge against t's (an even permutation of the four points), so
+    // each of the nine is computed once, when first needed.
+    let mut edges = [[None::<f64>; 3]; 3];
+    let mut edge = |i: usize, j: usize| {
+        *edges[i][j].get_or_insert_with(|| o3(t[i], t[(i + 1) % 3], u[j], u[(j + 1) % 3]))
+    };
+    for i in 0..3 {
+        if reaches_plane(t_vs_u[i], t_vs_u[(i + 1) % 3])
+            && one_sign([edge(i, 0), edge(i, 1), edge(i, 2)])
+        {
+            return true;
+        }
+    }
+    for j in 0..3 {
+        if reaches_plane(u_vs_t[j], u_vs_t[(j + 1) % 3])
+            && one_sign([edge(0, j), edge(1, j), edge(2, j)])
+        {
+            return true;
+        }
+    }
+    false
 }
 
 /// How far triangle `t` pokes through triangle `u`: the part of `t` over `u` (clipped to
@@ -198,6 +222,9 @@ impl TriMesh {
             boxes.push((a.min(b).min(c), a.max(b).max(c), t as u32));
         }
         let grid = Grid::new(&boxes);
+        // Each box's lowest cell: the cell of two boxes' overlap corner (their lows'
+        // maximum) is the maximum of theirs, the floor being monotonic.
+        let low_cells: Vec<[i64; 3]> = boxes.iter().map(|b| grid.cell_of(b.0)).collect();
         // The cells are independent: tested in parallel, the pairs then sorted.
         let per_cell: Vec<Vec<(u32, u32)>> = grid
             .cells
@@ -206,13 +233,15 @@ impl TriMesh {
                 let mut found = Vec::new();
                 for (k, &i) in members.iter().enumerate() {
                     let (lo, hi, s) = boxes[i as usize];
+                    let low = low_cells[i as usize];
                     for &j in &members[k + 1..] {
                         let (lo2, hi2, t) = boxes[j as usize];
                         if lo2.cmpgt(hi).any() || lo.cmpgt(hi2).any() {
                             continue;
                         }
                         // Test each pair once: in the cell holding its boxes' overlap corner.
-                        if grid.cell_of(lo.max(lo2)) != *cell {
+                        let low2 = low_cells[j as usize];
+                        if std::array::from_fn(|a| low[a].max(low2[a])) != *cell {
                             continue;
                         }
                         let (ts, tt) = (mesh.triangles[s as usize], mesh.triangles[t as usize]);
@@ -357,6 +386,68 @@ mod tests {
         assert_eq!(crossing_depth(T, beside), 0.0);
     }
 
+    /// The narrow phase as first written: each edge of one against the other triangle,
+    /// every orientation computed afresh.
+    fn meet_by_segments(t: [DVec3; 3], u: [DVec3; 3]) -> bool {
+        let segment = |d: DVec3, e: DVec3, [a, b, c]: [DVec3; 3]| {
+            let (od, oe) = (o3(a, b, c, d), o3(a, b, c, e));
+            if (od > 0.0 && oe > 0.0) || (od < 0.0 && oe < 0.0) || (od == 0.0 && oe == 0.0) {
+                return false;
+            }
+            let s = [o3(d, e, a, b), o3(d, e, b, c), o3(d, e, c, a)];
+            s.iter().all(|&x| x >= 0.0) || s.iter().all(|&x| x <= 0.0)
+        };
+        let side = |s: [f64; 3]| s.iter().all(|&x| x > 0.0) || s.iter().all(|&x| x < 0.0);
+        let u_vs_t = u.map(|p| o3(t[0], t[1], t[2], p));
+        if side(u_vs_t) {
+            return false;
+        }
+        if u_vs_t.iter().all(|&x| x == 0.0) {
+            return coplanar_meet(t, u);
+        }
+        if side(t.map(|p| o3(u[0], u[1], u[2], p))) {
+            return false;
+        }
+        (0..3).any(|i| segment(t[i], t[(i + 1) % 3], u))
+            || (0..3).any(|i| segment(u[i], u[(i + 1) % 3], t))
+    }
+
+    #[test]
+    fn the_shared_edge_orientations_decide_as_each_segment_alone_does() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
+        // Corners on a coarse lattice: many touching, collinear and coplanar cases.
+        let corner = |rng: &mut rand_chacha::ChaCha8Rng| {
+            DVec3::new(
+                f64::from(rng.random_range(0..4u8)),
+                f64::from(rng.random_range(0..4u8)),
+                f64::from(rng.random_range(0..4u8)),
+            ) * 0.25
+        };
+        let (mut meet, mut apart, mut coplanar) = (0, 0, 0);
+        for _ in 0..40_000 {
+            let t = [corner(&mut rng), corner(&mut rng), corner(&mut rng)];
+            let u = [corner(&mut rng), corner(&mut rng), corner(&mut rng)];
+            if is_degenerate(t[0], t[1], t[2]) || is_degenerate(u[0], u[1], u[2]) {
+                continue;
+            }
+            let expected = meet_by_segments(t, u);
+            assert_eq!(triangles_meet(t, u), expected, "{t:?} {u:?}");
+            assert_eq!(triangles_meet(u, t), expected, "{u:?} {t:?}");
+            if u.iter().all(|&p| o3(t[0], t[1], t[2], p) == 0.0) {
+                coplanar += 1;
+            } else if expected {
+                meet += 1;
+            } else {
+                apart += 1;
+            }
+        }
+        assert!(
+            meet > 1000 && apart > 1000 && coplanar > 100,
+            "{meet} {apart} {coplanar}"
+        );
+    }
+
     #[test]
     fn coplanar_overlap_and_gap() {
         let shifted = T.map(|p| p + DVec3::new(0.4, 0.4, 0.0));
@@ -365,5 +456,63 @@ mod tests {
         assert!(!triangles_meet(T, apart));
         let inner = T.map(|p| p * 0.1 + DVec3::new(0.1, 0.1, 0.0));
         assert!(triangles_meet(T, inner));
+    }
+
+    #[test]
+    fn the_grid_finds_every_meeting_pair_once_as_all_pairs_do() {
+        use rand::{Rng, SeedableRng};
+        // Soups of small triangles of mixed sizes, some sharing vertices, some on a grid
+        // of exactly coplanar points, crossing each other's boxes and the grid's cells.
+        for seed in 0..6 {
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+            let mut positions = Vec::new();
+            let mut triangles = Vec::new();
+            for k in 0..300u32 {
+                let size = if k % 7 == 0 { 0.5 } else { 0.08 };
+                let c = DVec3::new(rng.random(), rng.random(), rng.random());
+                let mut corner = || {
+                    let d = DVec3::new(rng.random(), rng.random(), rng.random()) - 0.5;
+                    let p = c + d * size;
+                    if seed % 2 == 0 {
+                        // On the plane z = 0.5, at multiples of 1/64.
+                        DVec3::new(
+                            (p.x * 64.0).round() / 64.0,
+                            (p.y * 64.0).round() / 64.0,
+                            0.5,
+                        )
+                    } else {
+                        p
+                    }
+                };
+                let at = positions.len() as u32;
+                positions.extend([corner(), corner(), corner()]);
+                // Every fifth triangle shares a vertex with the one before.
+                let first = if k % 5 == 4 { at - 1 } else { at };
+                triangles.push([first, at + 1, at + 2]);
+            }
+            let mesh = TriMesh::new(positions, triangles);
+            let welded = mesh.welded();
+            let mut expected = Vec::new();
+            for s in 0..welded.triangles.len() {
+                for t in s + 1..welded.triangles.len() {
+                    let (ts, tt) = (welded.triangles[s], welded.triangles[t]);
+                    let (a, b) = (welded.triangle(s), welded.triangle(t));
+                    let flat = |x: [u32; 3], p: [DVec3; 3]| {
+                        x[0] == x[1]
+                            || x[1] == x[2]
+                            || x[0] == x[2]
+                            || is_degenerate(p[0], p[1], p[2])
+                    };
+                    if flat(ts, a) || flat(tt, b) || ts.iter().any(|v| tt.contains(v)) {
+                        continue;
+                    }
+                    if triangles_meet(a, b) {
+                        expected.push((s as u32, t as u32));
+                    }
+                }
+            }
+            assert!(expected.len() > 20, "seed {seed}: {}", expected.len());
+            assert_eq!(mesh.self_intersections(usize::MAX), expected, "seed {seed}");
+        }
     }
 }
