@@ -195,16 +195,22 @@ impl Context<'_> {
                 Some((s, clamp)) => {
                     let st =
                         self.src.mesh.triangles[s].map(|i| self.src.mesh.positions[i as usize]);
-                    // A face of no known source may lie off the surface (tetrahedra of a
-                    // concave mesh): it is moved so that its centroid is at the nearest
-                    // point of the source triangle, whose value it then takes on average.
-                    let shift = if clamp {
-                        DVec3::ZERO
+                    // The corners' weights in the source triangle, for the corner
+                    // attributes (an input with none needs none). A face of no known
+                    // source may lie off the surface (tetrahedra of a concave mesh): it
+                    // is moved so that its centroid is at the nearest point of the
+                    // source triangle, whose value it then takes on average.
+                    let w = if have.uv.is_some() || have.normal.is_some() || have.color.is_some() {
+                        let shift = if clamp {
+                            DVec3::ZERO
+                        } else {
+                            let c = (p[0] + p[1] + p[2]) / 3.0;
+                            nearest::closest_point(st, c) - c
+                        };
+                        p.map(|q| barycentric(st, q + shift, clamp))
                     } else {
-                        let c = (p[0] + p[1] + p[2]) / 3.0;
-                        nearest::closest_point(st, c) - c
+                        [[0.0; 3]; 3]
                     };
-                    let w = p.map(|q| barycentric(st, q + shift, clamp));
                     material.push(self.src.material.map_or(0, |m| m[s]));
                     match &have.uv {
                         Some(v) => uv.push(w.map(|w| to_f32(mix(&v[s], w)))),

@@ -125,28 +125,39 @@ pub(crate) fn voronoi_cells(
 /// cuts have less to go through; a plane with no vertex beyond it cannot cut.
 fn cut_cell(mesh: &Piece, mut planes: Vec<Plane>, eps: f64) -> Vec<Piece> {
     let mut cell: Option<Piece> = None;
+    // Planes found to have no vertex beyond them, counted on all the vertices: they
+    // never cut (every later piece lies within this one), so they are not counted again.
+    let mut spent = vec![false; planes.len()];
     while !planes.is_empty() {
         let current = cell.as_ref().unwrap_or(mesh);
         // Counted on at most ~128 of the vertices (the choice is only an order;
         // every plane still cuts), and on all of them before concluding that
         // no plane has a vertex beyond it.
-        let best_of = |stride: usize| {
-            let beyond = |plane: &Plane| {
-                current
-                    .pos
-                    .iter()
-                    .step_by(stride)
-                    .filter(|&&p| plane.eval(p) > 0.0)
-                    .count()
-            };
-            planes
+        let stride = (current.pos.len() / 128).max(1);
+        let beyond = |plane: &Plane, stride: usize| {
+            current
+                .pos
                 .iter()
-                .enumerate()
-                .map(|(k, plane)| (k, beyond(plane)))
-                .fold((0, 0), |acc, x| if x.1 > acc.1 { x } else { acc })
+                .step_by(stride)
+                .filter(|&&p| plane.eval(p) > 0.0)
+                .count()
         };
-        let mut best_count = best_of((current.pos.len() / 128).max(1));
-        if best_count.1 == 0 {
+        let mut best_of = |stride: usize| {
+            let mut best = (0, 0);
+            for (k, plane) in planes.iter().enumerate() {
+                if spent[k] {
+                    continue;
+                }
+                let count = beyond(plane, stride);
+                if count > best.1 {
+                    best = (k, count);
+                }
+                spent[k] = stride == 1 && count == 0;
+            }
+            best
+        };
+        let mut best_count = best_of(stride);
+        if best_count.1 == 0 && stride > 1 {
             best_count = best_of(1);
         }
         let (best, count) = best_count;
@@ -154,6 +165,7 @@ fn cut_cell(mesh: &Piece, mut planes: Vec<Plane>, eps: f64) -> Vec<Piece> {
             break;
         }
         let plane = planes.swap_remove(best);
+        spent.swap_remove(best);
         if let Some(next) = clip_keeping_faces(current, &plane, eps) {
             if next.is_empty() {
                 return Vec::new();
