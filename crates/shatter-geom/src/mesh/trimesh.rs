@@ -238,25 +238,69 @@ impl TriMesh {
     /// number of negative components mirrors the mesh; the winding is then reversed so an
     /// outward mesh stays outward.
     ///
+    /// A fragment the fracture made stays one ([`is_fracture_fragment`](Self::is_fracture_fragment))
+    /// when the transform's rounding cannot make it cross itself: each coordinate moves
+    /// by at most 2⁻⁵² of the largest magnitude it passes through, and that must stay
+    /// below a thousandth of the crossings the checks accept (a fragment within about two
+    /// hundred of its sizes of the origin, before and after). Any other result is checked
+    /// in full when fractured.
+    ///
     /// ```
+    /// use shatter_geom::fracture::{fracture, FractureParams};
     /// use shatter_geom::{DVec3, shapes};
     /// let m = shapes::cube().transformed(DVec3::new(2.0, 1.0, 3.0), DVec3::new(0.0, 10.0, 0.0));
     /// assert!((m.volume() - 6.0).abs() < 1e-12);
     /// assert!((m.centroid() - DVec3::new(0.0, 10.0, 0.0)).length() < 1e-12);
+    ///
+    /// let fragment = &fracture(&shapes::cube(), &FractureParams::voronoi(4, 1))?.fragments[0].mesh;
+    /// assert!(fragment.transformed(DVec3::new(0.3, 2.0, 7.0), DVec3::ZERO).is_fracture_fragment());
+    /// // Far from the origin for its size: rounding could matter, so it is checked again.
+    /// assert!(!fragment.transformed(DVec3::ONE, DVec3::splat(1e9)).is_fracture_fragment());
+    /// # Ok::<(), shatter_geom::fracture::FractureError>(())
     /// ```
     pub fn transformed(&self, scale: DVec3, translate: DVec3) -> TriMesh {
-        let positions = self
-            .positions
-            .iter()
-            .map(|&p| p * scale + translate)
-            .collect();
+        // (A zero translation adds nothing, not even to the sign of a zero.)
+        let positions = if translate == DVec3::ZERO {
+            self.positions.iter().map(|&p| p * scale).collect()
+        } else {
+            self.positions
+                .iter()
+                .map(|&p| p * scale + translate)
+                .collect()
+        };
         let mirrored = scale.x * scale.y * scale.z < 0.0;
         let triangles = if mirrored {
             self.triangles.iter().map(|&[a, b, c]| [a, c, b]).collect()
         } else {
             self.triangles.clone()
         };
-        TriMesh::new(positions, triangles)
+        let mut out = TriMesh::new(positions, triangles);
+        if self.is_fracture_fragment() && out.rounding_keeps_shape(self, scale, translate) {
+            out.mark_solid();
+        }
+        out
+    }
+
+    /// Whether this mesh, `original` scaled by `scale` and translated by `translate`,
+    /// is so close to the exact transform that the rounding cannot have made it cross
+    /// itself (see [`transformed`](Self::transformed)): every coordinate moved by at most
+    /// 2⁻⁵² of the largest magnitude it passed through (the scaled value, then the
+    /// translated one), and that is below a thousandth of the crossing depth the checks
+    /// accept for this mesh's size.
+    fn rounding_keeps_shape(&self, original: &TriMesh, scale: DVec3, translate: DVec3) -> bool {
+        let Some((lo, hi)) = self.bounds() else {
+            return false;
+        };
+        let size = (hi - lo).length();
+        let reach = original.positions.iter().fold(0.0f64, |m, &p| {
+            let q = p * scale;
+            m.max(q.abs().max_element())
+                .max((q + translate).abs().max_element())
+        });
+        size > 0.0
+            && size.is_finite()
+            && reach.is_finite()
+            && reach * 2.0 * f64::EPSILON <= 1e-3 * super::validate::CROSSING_TOLERANCE * size
     }
 
     /// The mesh with every triangle's winding reversed (normals point the other way).

@@ -410,10 +410,9 @@ fn scale_fragment(f: &Fragment, s: DVec3) -> Fragment {
     let c2 = sm * c * sm * det;
     let inertia = DMat3::from_diagonal(DVec3::splat(trace(&c2))) - c2;
     Fragment {
-        mesh: TriMesh::new(
-            f.mesh.positions.iter().map(|p| *p * s).collect(),
-            f.mesh.triangles.clone(),
-        ),
+        // (Keeps the fracture's mark, so a runtime cut of the fragment skips the
+        // self-intersection search, where the scaling cannot have made it cross itself.)
+        mesh: f.mesh.transformed(s, DVec3::ZERO),
         interior: f.interior.clone(),
         corners: scale_corners(&f.corners, s),
         material: f.material.clone(),
