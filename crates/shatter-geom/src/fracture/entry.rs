@@ -14,7 +14,7 @@ use super::kernel::{Piece, Plane, is_surface, mesh_scale};
 use super::methods::grid::{Grid, bricks, is_box, sliced};
 use super::methods::slice::{random_planes, slice};
 use super::methods::tetra::{SLIVER_VOLUME_FRACTION, TetraOptions, tetra};
-use super::methods::voronoi::{Cells, delaunay_neighbours, voronoi_cells};
+use super::methods::voronoi::{Cells, Neighbours, delaunay_neighbours, voronoi_cells};
 use super::normalize::{Frame, check_cancellation, check_volume_sum};
 use super::params::{FractureParams, Method, Pattern, Seeds};
 use super::seeds::patterns::{seeds, splinter_weights};
@@ -308,8 +308,13 @@ fn fracture_tagged(
 ) -> Result<(Fracture, Vec<Vec<u64>>), FractureError> {
     mesh.validate_indices()?;
     let frame = Frame::of(mesh);
-    let (piece, warnings) =
-        validated_piece(&frame.mesh_to_local(mesh), mesh.is_fracture_fragment())?;
+    // Given seeds' Delaunay neighbours depend on the seeds alone: they are found while
+    // the mesh is checked.
+    let (checked, given_neighbours) = rayon::join(
+        || validated_piece(&frame.mesh_to_local(mesh), mesh.is_fracture_fragment()),
+        || given_seed_neighbours(&frame, params),
+    );
+    let (piece, warnings) = checked?;
     // Refuse before the work when the whole mesh's own quantities are beyond f64.
     check_cancellation(&piece.pos, &piece.tris)?;
     let (volume, _, inertia) = mass_properties(&piece.pos, &piece.tris);
@@ -324,7 +329,8 @@ fn fracture_tagged(
         _ => false,
     };
     let convex = LocalConvex::of(convex, &frame);
-    let (local, tags) = fracture_local(piece, warnings, &params, &convex, &frame)?;
+    let (local, tags) =
+        fracture_local(piece, warnings, &params, &convex, &frame, given_neighbours)?;
     // A cut that lost or gained volume is refused, not returned (features far below the
     // cut tolerance, as a body squashed beside a 1e33 spike).
     if !partial || frame.is_per_axis() {
@@ -338,6 +344,25 @@ fn fracture_tagged(
         f.mesh.mark_solid();
     }
     Ok((result, tags))
+}
+
+/// The Delaunay neighbours of the seeds `params` gives (Voronoi with [`Seeds::Points`]),
+/// in the local frame of `frame` and under its metric, as [`fracture_local`] would find
+/// them; `None` when the seeds are generated or the frame is per axis (where there are no
+/// neighbours to find), and `Some(None)` when the seeds have no tetrahedralization or a
+/// seed is out of the frame's reach (which `local_params` then refuses).
+fn given_seed_neighbours(frame: &Frame, params: &FractureParams) -> Option<Option<Neighbours>> {
+    let Method::Voronoi {
+        seeds: Seeds::Points(list),
+    } = &params.method
+    else {
+        return None;
+    };
+    if frame.is_per_axis() {
+        return None;
+    }
+    let local: Option<Vec<DVec3>> = list.iter().map(|&p| frame.point_to_local(p)).collect();
+    Some(local.and_then(|points| delaunay_neighbours(&points, frame.metric())))
 }
 
 /// The parameters with the user's points and planes in the local frame.
@@ -405,13 +430,15 @@ fn local_params(frame: &Frame, params: &FractureParams) -> Result<FractureParams
 }
 
 /// The fracture of the validated `piece`, in the local frame; `metric` keeps Voronoi
-/// distances those of the input.
+/// distances those of the input. `given_neighbours`: the given seeds' Delaunay
+/// neighbours when already found ([`given_seed_neighbours`]).
 fn fracture_local(
     piece: Piece,
     mut warnings: Vec<String>,
     params: &FractureParams,
     convex: &LocalConvex,
     frame: &Frame,
+    given_neighbours: Option<Option<Neighbours>>,
 ) -> Result<(Fracture, Vec<Vec<u64>>), FractureError> {
     let metric = frame.metric();
     let mut rng = ChaCha8Rng::seed_from_u64(params.seed);
@@ -465,10 +492,10 @@ fn fracture_local(
             // Per axis, the seeds' Delaunay neighbours under the metric would need
             // coordinates squashed up to 1e-150-fold, beyond what the exact predicates
             // take: every other seed is then a candidate neighbour instead.
-            let neighbours = if frame.is_per_axis() {
-                None
-            } else {
-                delaunay_neighbours(&points, metric)
+            let neighbours = match given_neighbours {
+                Some(found) => found,
+                None if frame.is_per_axis() => None,
+                None => delaunay_neighbours(&points, metric),
             };
             let cells = voronoi_cells(&piece, &points, metric, eps, neighbours);
             finish_cells(cells, volume, eps, convex, &mut warnings)

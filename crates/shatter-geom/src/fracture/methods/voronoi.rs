@@ -28,11 +28,15 @@ pub(crate) fn voronoi_with(
     seeds: &[DVec3],
     metric: DVec3,
     eps: f64,
-    neighbours: Option<(Vec<Vec<u32>>, Vec<u32>)>,
+    neighbours: Option<Neighbours>,
 ) -> (Vec<Piece>, Vec<Bond>) {
     let cells = voronoi_cells(mesh, seeds, metric, eps, neighbours);
     (cells.pieces, cells.bonds)
 }
+
+/// Each seed's Delaunay neighbours and each seed's first occurrence
+/// ([`delaunay_neighbours`]).
+pub(crate) type Neighbours = (Vec<Vec<u32>>, Vec<u32>);
 
 /// A Voronoi cut with what made each piece: the pieces and their bonds, each piece's
 /// seed, and each seed's cell planes.
@@ -64,7 +68,7 @@ pub(crate) fn voronoi_cells(
     seeds: &[DVec3],
     metric: DVec3,
     eps: f64,
-    neighbours: Option<(Vec<Vec<u32>>, Vec<u32>)>,
+    neighbours: Option<Neighbours>,
 ) -> Cells {
     let k = seeds.len() as u64;
     let bisector = |i: usize, j: usize| {
@@ -185,7 +189,7 @@ fn cell_planes(
     i: usize,
     seeds: &[DVec3],
     metric: DVec3,
-    neighbours: Option<&(Vec<Vec<u32>>, Vec<u32>)>,
+    neighbours: Option<&Neighbours>,
     bounding_box: &Piece,
     bisector: &impl Fn(usize, usize) -> Plane,
     eps: f64,
@@ -247,10 +251,7 @@ fn cell_planes(
 /// Delaunay tetrahedralization (a point inside the face is the centre of an empty sphere
 /// through exactly its two seeds), so no face is missed; a cospherical configuration may
 /// add a neighbour whose face has no area, whose cut then removes nothing.
-pub(crate) fn delaunay_neighbours(
-    seeds: &[DVec3],
-    metric: DVec3,
-) -> Option<(Vec<Vec<u32>>, Vec<u32>)> {
+pub(crate) fn delaunay_neighbours(seeds: &[DVec3], metric: DVec3) -> Option<Neighbours> {
     let scale = DVec3::new(metric.x.sqrt(), metric.y.sqrt(), metric.z.sqrt());
     let scaled: Vec<DVec3> = seeds.iter().map(|&s| s * scale).collect();
     let t = crate::delaunay::tetrahedralize(&scaled).ok()?;
