@@ -113,6 +113,13 @@ fn run(command: &Command, ctx: &Context) -> Result<(), CliError> {
 fn main() -> ExitCode {
     // clap prints usage errors itself and exits with code 2.
     let cli = Cli::parse();
+    // Each pool thread kept on one processor, before anything uses the pool (see
+    // `shatter_lab::threads`; SHATTER_PIN_THREADS=0 turns it off).
+    if let Err(e) = shatter_lab::threads::pin_global_pool() {
+        let e = CliError::from(e);
+        eprintln!("error: {e}");
+        return ExitCode::from(e.exit_code());
+    }
     // A panic is a bug in shatter, never the user's fault: report it as an internal error
     // (exit code 1) with a one-line message instead of a backtrace dump.
     std::panic::set_hook(Box::new(|info| {

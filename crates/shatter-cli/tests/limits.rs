@@ -291,3 +291,31 @@ fn a_bad_mesh_path_is_named_once() {
     let run = shatter(dir.path(), &["fracture", "notes.txt"]).bad_input(&["unknown mesh format"]);
     assert_eq!(run.stderr.matches("notes.txt").count(), 1, "{}", run.stderr);
 }
+
+/// Runs `shatter ARGS` in `dir` with `SHATTER_PIN_THREADS` set to `value`.
+fn shatter_pinning(dir: &std::path::Path, value: &str, args: &[&str]) -> common::Run {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_shatter"))
+        .args(args)
+        .current_dir(dir)
+        .env("SHATTER_PIN_THREADS", value)
+        .output()
+        .unwrap();
+    common::Run {
+        code: out.status.code().unwrap_or(-1),
+        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+    }
+}
+
+#[test]
+fn the_thread_pinning_variable_is_checked_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = ["fracture", "--shape", "cube", "--pieces", "4", "--json"];
+    shatter_pinning(dir.path(), "maybe", &args)
+        .bad_input(&["SHATTER_PIN_THREADS=maybe", "expected 0"]);
+    // Off and on both fracture, with the same fragments.
+    let off = shatter_pinning(dir.path(), "0", &args).ok().json();
+    let on = shatter_pinning(dir.path(), "1", &args).ok().json();
+    assert_eq!(off["fragments"], on["fragments"]);
+    assert_eq!(off["bonds"], on["bonds"]);
+}

@@ -42,6 +42,7 @@ pub mod output;
 pub mod simulate;
 mod spread;
 pub mod study;
+pub mod threads;
 
 pub use context::Context;
 pub use error::{LabError, ResultExt, chain};
