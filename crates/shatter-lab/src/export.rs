@@ -24,6 +24,14 @@ pub enum MeshFormat {
 }
 
 impl MeshFormat {
+    /// Whether a fracture written in this format carries the fragments' convex pieces
+    /// (a GLB is a pre-fractured asset, [`write_fracture`]; an OBJ has surfaces only), so
+    /// whether a fracture to write in it needs them made
+    /// ([`FractureConfig::convex_pieces`](crate::fracture::FractureConfig::convex_pieces)).
+    pub fn carries_convex_pieces(self) -> bool {
+        self == MeshFormat::Glb
+    }
+
     /// The format of an output path, from its extension (case-insensitive).
     pub fn from_output_path(path: &Path) -> Result<Self, LabError> {
         let ext = path

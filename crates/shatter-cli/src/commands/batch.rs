@@ -127,7 +127,7 @@ fn one(
 ) -> FileResult {
     let config = FractureConfig {
         source: MeshSource::File(input.to_path_buf()),
-        convex_pieces: format == MeshFormat::Glb,
+        convex_pieces: format.carries_convex_pieces(),
         ..config.clone()
     };
     let work = || -> Result<FractureReport, CliError> {

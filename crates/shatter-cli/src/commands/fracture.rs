@@ -236,8 +236,8 @@ impl FractureArgs {
                 method,
                 seed: self.seed,
                 strict: self.strict,
-                // Only a GLB carries them; no file, or an OBJ, needs none.
-                convex_pieces: out.as_ref().is_some_and(|(_, f)| *f == MeshFormat::Glb),
+                // Without an output file, none are needed.
+                convex_pieces: out.as_ref().is_some_and(|(_, f)| f.carries_convex_pieces()),
             },
             out,
         ))
