@@ -308,11 +308,16 @@ fn fracture_tagged(
 ) -> Result<(Fracture, Vec<Vec<u64>>), FractureError> {
     mesh.validate_indices()?;
     let frame = Frame::of(mesh);
-    // Given seeds' Delaunay neighbours depend on the seeds alone: they are found while
-    // the mesh is checked.
-    let (checked, given_neighbours) = rayon::join(
+    // The parameters in the local frame, and given seeds' Delaunay neighbours, depend on
+    // the frame alone: found while the mesh is checked (a mesh error still comes first).
+    let (checked, local) = rayon::join(
         || validated_piece(&frame.mesh_to_local(mesh), mesh.is_fracture_fragment()),
-        || given_seed_neighbours(&frame, params),
+        || {
+            local_params(&frame, params).map(|local| {
+                let neighbours = given_seed_neighbours(&frame, &local);
+                (local, neighbours)
+            })
+        },
     );
     let (piece, warnings) = checked?;
     // Refuse before the work when the whole mesh's own quantities are beyond f64.
@@ -320,7 +325,7 @@ fn fracture_tagged(
     let (volume, _, inertia) = mass_properties(&piece.pos, &piece.tris);
     frame.volume_to_world(volume, "the mesh's volume")?;
     frame.inertia_to_world(inertia, "the mesh's inertia tensor")?;
-    let params = local_params(&frame, params)?;
+    let (params, given_neighbours) = local?;
     // Tetra with skipped surface vertices fills only the points' hull, inside the mesh;
     // a grid with voids leaves them out.
     let partial = match &params.method {
@@ -346,23 +351,18 @@ fn fracture_tagged(
     Ok((result, tags))
 }
 
-/// The Delaunay neighbours of the seeds `params` gives (Voronoi with [`Seeds::Points`]),
-/// in the local frame of `frame` and under its metric, as [`fracture_local`] would find
-/// them; `None` when the seeds are generated or the frame is per axis (where there are no
-/// neighbours to find), and `Some(None)` when the seeds have no tetrahedralization or a
-/// seed is out of the frame's reach (which `local_params` then refuses).
-fn given_seed_neighbours(frame: &Frame, params: &FractureParams) -> Option<Option<Neighbours>> {
+/// The Delaunay neighbours of the seeds the local parameters `local` give (Voronoi with
+/// [`Seeds::Points`]), under `frame`'s metric, as [`fracture_local`] would find them;
+/// `None` when the seeds are generated or the frame is per axis (where there are no
+/// neighbours to find), and `Some(None)` when the seeds have no tetrahedralization.
+fn given_seed_neighbours(frame: &Frame, local: &FractureParams) -> Option<Option<Neighbours>> {
     let Method::Voronoi {
-        seeds: Seeds::Points(list),
-    } = &params.method
+        seeds: Seeds::Points(points),
+    } = &local.method
     else {
         return None;
     };
-    if frame.is_per_axis() {
-        return None;
-    }
-    let local: Option<Vec<DVec3>> = list.iter().map(|&p| frame.point_to_local(p)).collect();
-    Some(local.and_then(|points| delaunay_neighbours(&points, frame.metric())))
+    (!frame.is_per_axis()).then(|| delaunay_neighbours(points, frame.metric()))
 }
 
 /// The parameters with the user's points and planes in the local frame.
