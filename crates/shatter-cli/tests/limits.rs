@@ -11,19 +11,15 @@ use common::shatter;
 /// -v`), so that a run that tried to allocate what it estimates fails instead of
 /// succeeding slowly: a refusal under the limit proves nothing was allocated.
 fn shatter_limited(dir: &std::path::Path, mib: u64, args: &[&str]) -> common::Run {
-    let out = std::process::Command::new("sh")
+    std::process::Command::new("sh")
         .arg("-c")
         .arg(format!("ulimit -v {} && exec \"$0\" \"$@\"", mib * 1024))
         .arg(env!("CARGO_BIN_EXE_shatter"))
         .args(args)
         .current_dir(dir)
         .output()
-        .expect("sh runs");
-    common::Run {
-        code: out.status.code().unwrap_or(-1),
-        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
-    }
+        .expect("sh runs")
+        .into()
 }
 
 fn machine_has_meminfo() -> bool {
@@ -294,17 +290,7 @@ fn a_bad_mesh_path_is_named_once() {
 
 /// Runs `shatter ARGS` in `dir` with `SHATTER_PIN_THREADS` set to `value`.
 fn shatter_pinning(dir: &std::path::Path, value: &str, args: &[&str]) -> common::Run {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_shatter"))
-        .args(args)
-        .current_dir(dir)
-        .env("SHATTER_PIN_THREADS", value)
-        .output()
-        .unwrap();
-    common::Run {
-        code: out.status.code().unwrap_or(-1),
-        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
-    }
+    common::shatter_env(dir, args, &[("SHATTER_PIN_THREADS", value)])
 }
 
 #[test]

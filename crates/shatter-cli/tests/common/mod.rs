@@ -52,18 +52,31 @@ impl Run {
     }
 }
 
+impl From<Output> for Run {
+    /// A finished process's exit code (-1 when killed by a signal) and its output.
+    fn from(out: Output) -> Self {
+        Run {
+            code: out.status.code().unwrap_or(-1),
+            stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+            stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+        }
+    }
+}
+
 /// Runs `shatter ARGS` in `dir`.
 pub fn shatter(dir: &Path, args: &[&str]) -> Run {
-    let out: Output = Command::new(env!("CARGO_BIN_EXE_shatter"))
+    shatter_env(dir, args, &[])
+}
+
+/// Runs `shatter ARGS` in `dir` with the environment variables `env` set.
+pub fn shatter_env(dir: &Path, args: &[&str], env: &[(&str, &str)]) -> Run {
+    Command::new(env!("CARGO_BIN_EXE_shatter"))
         .args(args)
         .current_dir(dir)
+        .envs(env.iter().copied())
         .output()
-        .unwrap();
-    Run {
-        code: out.status.code().unwrap_or(-1),
-        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
-    }
+        .unwrap()
+        .into()
 }
 
 /// A deterministic pseudo-random number in [0, 1) (64-bit LCG, high bits).
