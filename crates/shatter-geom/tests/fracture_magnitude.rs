@@ -295,4 +295,35 @@ fn given_seeds_planes_and_impact_points_are_mapped_into_the_frame() {
             index: 1
         }
     );
+    // So is one the frame holds but whose bisector's offset would overflow (a unit cube
+    // and a seed at 1e300: the cell of the seed at the centre took the whole cube twice
+    // over, refused as volumes adding up to twice the mesh's).
+    let unit = shapes::cube();
+    assert_eq!(
+        run(&unit, &far).unwrap_err(),
+        FractureError::TooFar {
+            what: "seed",
+            index: 1
+        }
+    );
+    // Within the limit a far seed is an empty cell: the cube stays whole.
+    let near_limit = Method::Voronoi {
+        seeds: Seeds::Points(vec![DVec3::ZERO, DVec3::splat(1e18)]),
+    };
+    let fr = run(&unit, &near_limit).unwrap();
+    assert_eq!(fr.fragments.len(), 1);
+    assert!(close(fr.fragments[0].volume, 1.0, 1e-12));
+    // A slice plane that far cuts nothing either, and beyond the limit it is refused.
+    let plane_at = |x: f64| Method::Slice {
+        pieces: 0,
+        planes: Some(vec![(DVec3::new(x, 0.0, 0.0), DVec3::X)]),
+    };
+    assert_eq!(run(&unit, &plane_at(1e18)).unwrap().fragments.len(), 1);
+    assert_eq!(
+        run(&unit, &plane_at(1e300)).unwrap_err(),
+        FractureError::TooFar {
+            what: "plane",
+            index: 0
+        }
+    );
 }

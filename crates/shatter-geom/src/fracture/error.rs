@@ -92,8 +92,13 @@ pub enum FractureError {
     )]
     Invalid(#[from] InvalidFracture),
     /// An explicit seed, plane point or impact point so far from the mesh that the
-    /// fracture's local frame (the mesh's box scaled to unit size) cannot hold it.
-    #[error("{what} {index} is too far from the mesh to be represented in its frame")]
+    /// fracture's local frame (the mesh's box scaled to unit size) cannot hold it: a
+    /// coordinate more than [`FAR_LIMIT`](super::FAR_LIMIT) (2^64) of the
+    /// mesh's half size from it.
+    #[error(
+        "{what} {index} is too far from the mesh: more than 1.8e19 times its size away, \
+         where the cut's arithmetic would overflow"
+    )]
     TooFar {
         /// What it is ("seed", "plane", "impact point").
         what: &'static str,

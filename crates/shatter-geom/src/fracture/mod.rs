@@ -36,7 +36,7 @@ pub use entry::{fracture, fracture_fragment, fracture_model, fracture_model_surf
 pub use error::{FractureError, InvalidFracture};
 pub(crate) use methods::grid::fills_box;
 pub use methods::tetra::{SLIVER_QUALITY, SLIVER_VOLUME_FRACTION};
-pub use normalize::ANISOTROPY;
+pub use normalize::{ANISOTROPY, FAR_LIMIT};
 pub use params::{FractureParams, Method, MethodKind, Pattern, Placement, Seeds};
 pub use rough::{RoughReport, Roughness, roughen};
 pub use types::{Bond, Fracture, Fragment};

@@ -37,6 +37,15 @@ use crate::util::bounds;
 /// own (2⁻²⁰ ≈ 1e-6; the cut tolerance is 1e-10 of the size).
 pub const ANISOTROPY: f64 = 1.0 / (1u64 << 20) as f64;
 
+/// How far a given point (a seed, a plane's point, an impact point) may lie from the
+/// mesh, per coordinate in the local frame, where the mesh's largest half extent is
+/// about 1: 2^64 ≈ 1.8e19 times the mesh's size. A bisector's offset is the product of
+/// two such coordinates, and the exact predicates multiply up to five, so beyond this
+/// the cut's arithmetic heads for overflow (at 1e300 a bisector's offset is infinite and
+/// a cell swallows the whole mesh); a point that far is refused by name
+/// ([`FractureError::TooFar`]).
+pub const FAR_LIMIT: f64 = 18_446_744_073_709_551_616.0;
+
 /// `x · 2^e`, exact whenever the result is a normal number (in steps, so `2^e` itself
 /// need not be representable).
 pub(crate) fn ldexp(mut x: f64, mut e: i32) -> f64 {
@@ -139,7 +148,7 @@ impl Frame {
     }
 
     /// A point of the input frame in the local frame (`None` if it is too far from the
-    /// mesh for the local frame to hold it).
+    /// mesh for the local frame to hold it: a coordinate beyond [`FAR_LIMIT`]).
     pub(crate) fn point_to_local(&self, p: DVec3) -> Option<DVec3> {
         let mut q = DVec3::ZERO;
         for a in 0..3 {
@@ -150,7 +159,7 @@ impl Frame {
                 ldexp(p[a] * 0.5 - self.t[a] * 0.5, 1 - self.k[a])
             };
         }
-        q.is_finite().then_some(q)
+        (q.is_finite() && q.abs().max_element() <= FAR_LIMIT).then_some(q)
     }
 
     /// A point of the local frame in the input frame.
