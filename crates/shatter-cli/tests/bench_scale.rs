@@ -35,7 +35,11 @@ fn bench_scale_reports_a_row_per_case_model_and_size_and_writes_the_plots() {
     assert_eq!(rows[15]["case"], "blast");
     assert_eq!(rows[15]["model"], "clusters");
     assert_eq!(json["enclosed_colliders"], false);
+    assert_eq!(json["contact_speed_cap"], true);
     for row in rows {
+        let fastest = row["fastest"].as_f64().unwrap();
+        assert!(fastest.is_finite() && fastest >= 0.0, "{row}");
+        assert!(row["speeds_capped"].is_u64(), "{row}");
         let fragments = row["fragments"].as_u64().unwrap();
         let grid: u64 = row["grid"]
             .as_array()
@@ -90,6 +94,34 @@ fn bench_scale_table_has_a_row_per_run() {
     assert!(lines[2].starts_with("landing   clusters"), "{}", run.stdout);
     assert!(lines[3].starts_with("shots     clusters"), "{}", run.stdout);
     assert!(dir.path().join("bench-scale/scale_mean_ms.png").exists());
+}
+
+#[test]
+fn bench_scale_can_turn_the_contact_speed_cap_off() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = shatter(
+        dir.path(),
+        &[
+            "bench",
+            "scale",
+            "--sizes",
+            "100",
+            "--models",
+            "clusters",
+            "--cases",
+            "landing",
+            "--seconds",
+            "0.05",
+            "--no-contact-speed-cap",
+            "--json",
+        ],
+    )
+    .ok()
+    .json();
+    assert_eq!(json["contact_speed_cap"], false);
+    let rows = json["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 1);
+    assert_eq!(rows[0]["speeds_capped"], 0);
 }
 
 #[test]

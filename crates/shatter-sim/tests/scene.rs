@@ -307,6 +307,15 @@ fn the_debris_cap_and_the_launch_limit_are_read_and_saved() {
         .unwrap();
     assert_eq!(tiny(&world.to_scene_toml().unwrap()), 0.125);
     switch_reads_and_saves("skip_held_contacts", "\"yes\"", |s| s.skip_held_contacts);
+    // On by default: turned off, read and saved.
+    let cap = |text: &str| Scene::parse(text).unwrap().settings.contact_speed_cap;
+    assert!(cap(""));
+    let off = "[world]\ncontact_speed_cap = false\n";
+    assert!(!cap(off));
+    let e = err("[world]\ncontact_speed_cap = 0\n");
+    assert!(e.contains("contact_speed_cap"), "{e}");
+    let world = Scene::parse(off).unwrap().build(None).unwrap();
+    assert!(!cap(&world.to_scene_toml().unwrap()));
     for text in [
         "[world]\nmax_debris = 300\nmax_launch_speed = 40.5\n",
         "[world]\nmax_debris = \"none\"\n",

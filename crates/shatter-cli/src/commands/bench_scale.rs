@@ -1,5 +1,6 @@
 //! `shatter bench scale [--sizes N,..] [--models M,..] [--cases C,..] [--seconds T]
-//! [--out DIR] [--box-colliders] [--skip-held-contacts] [--json]`: brick worlds of growing size for each bond model and case (a
+//! [--out DIR] [--box-colliders] [--skip-held-contacts] [--enclosed-colliders]
+//! [--no-contact-speed-cap] [--json]`: brick worlds of growing size for each bond model and case (a
 //! wall hit by shots, an explosion in a wall, a block shattering on landing), ms per
 //! step (mean and worst), bodies, fragments at rest and diverged bodies, and plots of
 //! ms/step against fragments (measured by `shatter_lab::bench::scale`).
@@ -49,6 +50,10 @@ pub struct BenchScaleArgs {
     /// docs/scene-format.md).
     #[arg(long)]
     pub enclosed_colliders: bool,
+    /// Turn off the contact speed cap (the scene key `contact_speed_cap`): bodies leave a
+    /// step as fast as Rapier's solver makes them (see docs/scene-format.md).
+    #[arg(long)]
+    pub no_contact_speed_cap: bool,
     /// Print one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,
@@ -66,6 +71,7 @@ impl BenchScaleArgs {
             box_colliders: self.box_colliders,
             skip_held_contacts: self.skip_held_contacts,
             enclosed_colliders: self.enclosed_colliders,
+            no_contact_speed_cap: self.no_contact_speed_cap,
         }
     }
 }
@@ -83,7 +89,7 @@ pub fn run(args: &BenchScaleArgs, ctx: &Context) -> Result<BenchScaleReport, Cli
         report.steps, report.seconds, report.measured_seconds, report.estimated_seconds
     );
     println!(
-        "{:<9} {:<8} {:>9} {:>14} {:>9} {:>9} {:>9} {:>9} {:>9} {:>10} {:>8} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>8} {:>7}",
+        "{:<9} {:<8} {:>9} {:>14} {:>9} {:>9} {:>9} {:>9} {:>9} {:>10} {:>8} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>8} {:>8} {:>7} {:>7}",
         "case",
         "model",
         "fragments",
@@ -102,11 +108,13 @@ pub fn run(args: &BenchScaleArgs, ctx: &Context) -> Result<BenchScaleReport, Cli
         "asleep",
         "still",
         "diverged",
+        "fastest",
+        "capped",
         "broken"
     );
     for r in &report.rows {
         println!(
-            "{:<9} {:<8} {:>9} {:>14} {:>9.1} {:>9.3} {:>9.3} {:>9} {:>9.3} {:>10.3} {:>8.3} {:>9.3} {:>9} {:>9} {:>7} {:>7} {:>7} {:>8} {:>7}",
+            "{:<9} {:<8} {:>9} {:>14} {:>9.1} {:>9.3} {:>9.3} {:>9} {:>9.3} {:>10.3} {:>8.3} {:>9.3} {:>9} {:>9} {:>7} {:>7} {:>7} {:>8} {:>8.1} {:>7} {:>7}",
             r.case,
             r.model,
             r.fragments,
@@ -125,6 +133,8 @@ pub fn run(args: &BenchScaleArgs, ctx: &Context) -> Result<BenchScaleReport, Cli
             r.sleeping_bodies,
             r.still_fragments,
             r.diverged,
+            r.fastest,
+            r.speeds_capped,
             r.bonds_broken
         );
     }
@@ -132,7 +142,7 @@ pub fn run(args: &BenchScaleArgs, ctx: &Context) -> Result<BenchScaleReport, Cli
         "ms: wall clock per step; cpu ms: the stepping thread's CPU per step over the run; stress ms: the step's stress pass (solves, breaks, splits); solve ms: its solves alone; solve cpu, cpu max: the solves' CPU per step, mean and largest"
     );
     println!(
-        "asleep: dynamic bodies Rapier put to sleep; still: fragments whose pose did not change over the last step (sleeping or fixed)"
+        "asleep: dynamic bodies Rapier put to sleep; still: fragments whose pose did not change over the last step (sleeping or fixed); fastest: the fastest body after any step (m/s); capped: bodies the contact speed cap slowed"
     );
     for p in &report.plots {
         println!("wrote {}", p.display());

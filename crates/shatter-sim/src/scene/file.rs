@@ -45,6 +45,8 @@ pub struct WorldSection {
     pub enclosed_colliders: Option<bool>,
     /// Joints-model fragments held within three bonds skip their contacts (default false).
     pub skip_held_contacts: Option<bool>,
+    /// No body leaves a step much faster than what touched it moved (default true).
+    pub contact_speed_cap: Option<bool>,
     /// Debris bodies kept: an integer ≥ 0, or `"none"` (no cap). Default
     /// [`crate::world::DEFAULT_MAX_DEBRIS`].
     pub max_debris: Option<Spanned<toml::Value>>,

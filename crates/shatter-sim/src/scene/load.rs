@@ -106,6 +106,9 @@ impl Scene {
         if let Some(b) = w.skip_held_contacts {
             settings.skip_held_contacts = b;
         }
+        if let Some(b) = w.contact_speed_cap {
+            settings.contact_speed_cap = b;
+        }
         if let Some(m) = &w.max_debris {
             settings.max_debris = match m.get_ref() {
                 toml::Value::Integer(n) if *n >= 0 => Some(*n as usize),

@@ -30,6 +30,7 @@ impl World {
                 box_colliders: Some(s.box_colliders),
                 enclosed_colliders: Some(s.enclosed_colliders),
                 skip_held_contacts: Some(s.skip_held_contacts),
+                contact_speed_cap: Some(s.contact_speed_cap),
                 max_debris: Some(sp(budget_value(s.max_debris))),
                 max_launch_speed: Some(sp(s.max_launch_speed)),
                 tiny_debris: Some(sp(s.tiny_debris)),

@@ -5,6 +5,7 @@ mod query;
 mod run;
 mod runtime_step;
 mod settings;
+mod speed_cap;
 pub(crate) mod state;
 mod step;
 mod stress_step;

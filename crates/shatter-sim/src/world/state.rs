@@ -115,6 +115,8 @@ pub struct World {
     pub(crate) files: Arc<MemoryFiles>,
     /// The calling thread's CPU time in nanoseconds, if set ([`World::set_cpu_clock`]).
     pub(crate) cpu_clock: Option<fn() -> Option<u64>>,
+    /// The bodies' states at the start of the step ([`WorldSettings::contact_speed_cap`]).
+    pub(crate) speed_cap: crate::world::speed_cap::SpeedCap,
 }
 
 // A world is shared between threads (a Bevy resource, a game's system): on every target,
@@ -145,6 +147,7 @@ impl World {
             cuts: Vec::new(),
             files: Arc::default(),
             cpu_clock: None,
+            speed_cap: Default::default(),
         };
         world.rebuild();
         world

@@ -145,7 +145,19 @@ impl World {
                 .map(|(id, live)| (id, &live.held))
                 .collect(),
         };
+        let cap = self.settings.contact_speed_cap;
+        if cap {
+            self.speed_cap.record(&self.physics);
+        }
         self.physics.step_with_events(&filter, &hits);
+        if cap {
+            let margin = self.settings.gravity.length() * self.settings.dt
+                + self
+                    .physics
+                    .integration_parameters
+                    .max_corrective_velocity();
+            self.stats.speeds_capped += self.speed_cap.apply(&mut self.physics, margin);
+        }
         self.stats.steps += 1;
         self.stats.time = self.stats.steps as f64 * self.settings.dt as f64;
         let hits = hits.0.into_inner().unwrap_or_default();

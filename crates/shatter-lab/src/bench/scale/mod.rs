@@ -52,6 +52,9 @@ pub struct BenchScaleOptions {
     /// Enclosed bricks of cluster objects have colliders from the start
     /// ([`WorldSettings::enclosed_colliders`](shatter_sim::WorldSettings::enclosed_colliders)).
     pub enclosed_colliders: bool,
+    /// Turn off the contact speed cap
+    /// ([`WorldSettings::contact_speed_cap`](shatter_sim::WorldSettings::contact_speed_cap)).
+    pub no_contact_speed_cap: bool,
 }
 
 /// The largest world one run may ask for (the estimate refuses what the machine cannot
@@ -109,6 +112,11 @@ pub struct ScaleRow {
     pub still_fragments: usize,
     /// Bodies removed because their state diverged.
     pub diverged: usize,
+    /// The fastest any dynamic body moved after a step, over the whole run (m/s; linear
+    /// speed, projectiles included).
+    pub fastest: f32,
+    /// Bodies the contact speed cap slowed over the run (`Stats::speeds_capped`).
+    pub speeds_capped: usize,
     /// Bonds broken since the start.
     pub bonds_broken: usize,
 }
@@ -128,6 +136,8 @@ pub struct BenchScaleReport {
     /// Whether enclosed cluster bricks had colliders from the start
     /// (`--enclosed-colliders`).
     pub enclosed_colliders: bool,
+    /// Whether the contact speed cap was on (off with `--no-contact-speed-cap`).
+    pub contact_speed_cap: bool,
     /// The estimate checked before the runs (s).
     pub estimated_seconds: f64,
     /// Wall-clock seconds of all runs (building included).
@@ -149,6 +159,7 @@ struct ScaleConfig {
     box_colliders: bool,
     skip_held_contacts: bool,
     enclosed_colliders: bool,
+    no_contact_speed_cap: bool,
 }
 
 impl ScaleConfig {
@@ -196,16 +207,18 @@ impl ScaleConfig {
             box_colliders: o.box_colliders,
             skip_held_contacts: o.skip_held_contacts,
             enclosed_colliders: o.enclosed_colliders,
+            no_contact_speed_cap: o.no_contact_speed_cap,
         })
     }
 
     /// The world settings the options change (`--box-colliders`, `--skip-held-contacts`,
-    /// `--enclosed-colliders`).
+    /// `--enclosed-colliders`, `--no-contact-speed-cap`).
     fn settings(&self) -> worlds::Speedups {
         worlds::Speedups {
             box_colliders: self.box_colliders,
             skip_held_contacts: self.skip_held_contacts,
             enclosed_colliders: self.enclosed_colliders,
+            no_contact_speed_cap: self.no_contact_speed_cap,
         }
     }
 
@@ -321,8 +334,10 @@ fn measure(
     } else {
         Vec::new()
     };
+    let mut fastest = 0.0f32;
     let cpu_start = thread_cpu_ns();
     world.run_steps(steps, &ctx.progress, |world, done| {
+        fastest = fastest.max(world.fastest_speed());
         let ms = world.stats().last_step_ms;
         total += ms;
         max = max.max(ms);
@@ -370,6 +385,8 @@ fn measure(
         sleeping_bodies: stats.sleeping_bodies,
         still_fragments: unchanged(&before, &world.fragment_poses(id)),
         diverged: stats.diverged,
+        fastest,
+        speeds_capped: stats.speeds_capped,
         bonds_broken: stats.bonds_broken,
     })
 }
@@ -402,6 +419,7 @@ pub fn run(
         box_colliders: config.box_colliders,
         skip_held_contacts: config.skip_held_contacts,
         enclosed_colliders: config.enclosed_colliders,
+        contact_speed_cap: !config.no_contact_speed_cap,
         estimated_seconds: estimate.seconds,
         measured_seconds,
         rows,

@@ -15,6 +15,7 @@ fn options(dir: &std::path::Path) -> BenchScaleOptions {
         box_colliders: false,
         skip_held_contacts: false,
         enclosed_colliders: false,
+        no_contact_speed_cap: false,
     }
 }
 

@@ -116,6 +116,8 @@ pub struct Speedups {
     pub skip_held_contacts: bool,
     /// [`WorldSettings::enclosed_colliders`].
     pub enclosed_colliders: bool,
+    /// [`WorldSettings::contact_speed_cap`] turned off.
+    pub no_contact_speed_cap: bool,
 }
 
 /// A world of `case` with about `n` bricks bonded by `model`, and the object's id;
@@ -134,6 +136,7 @@ pub fn build(
         box_colliders: speedups.box_colliders,
         skip_held_contacts: speedups.skip_held_contacts,
         enclosed_colliders: speedups.enclosed_colliders,
+        contact_speed_cap: !speedups.no_contact_speed_cap,
         ..WorldSettings::default()
     });
     let cells = Vec3::new(grid[0] as f32, grid[1] as f32, grid[2] as f32);
