@@ -19,6 +19,11 @@
 //!   mass for a joint) adds at most `2·u·m / (m + m_b)` to a body of mass `m_b`: twice
 //!   its speed when it is far heavier, its speed when they weigh the same, little when
 //!   it is light;
+//! - only what touches a body counts, not what pushes that: Rapier passes a push on one
+//!   body per step (a block driven into a row of two loose bricks moves the far one at
+//!   the next step, when the near one already moves; `tests/speed_cap.rs`), and a bound
+//!   followed through rows of bodies (tried, eight deep) left the landings' flung bricks
+//!   at up to twice the block's speed instead of about its speed;
 //! - a body faster than its bound after the step gets its bound: its velocity and spin
 //!   are scaled down together. Its move in the step stays as Rapier made it: shortened
 //!   alike, it put the body back into the squeeze, which flung it again at the next
