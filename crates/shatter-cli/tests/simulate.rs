@@ -76,6 +76,43 @@ fn the_runtime_scene_reports_its_cuts_and_their_depth() {
     assert!(json["bonds_damaged"].as_u64().is_some(), "{json}");
 }
 
+/// bench scale's 2,000-brick landing as a scene: a block of 13 × 13 × 12 weakly bonded
+/// bricks dropped from 4 m, with the `[world]` line `extra`.
+fn landing_scene(dir: &std::path::Path, extra: &str) -> String {
+    let path = dir.join(format!("landing{}.toml", extra.len()));
+    std::fs::write(
+        &path,
+        format!(
+            "[world]\nbond_model = \"clusters\"\n{extra}\n\n[[objects]]\nshape = \"cube\"\n\
+             method = \"grid\"\ngrid = [13, 13, 12]\nbreak_force = 2000.0\n\
+             position = [0.0, 4.6, 0.0]\nscale = [1.3, 1.3, 1.2]\n"
+        ),
+    )
+    .unwrap();
+    path.to_string_lossy().into_owned()
+}
+
+#[test]
+fn the_landing_reports_the_bodies_the_speed_cap_slowed() {
+    let dir = tempfile::tempdir().unwrap();
+    let capped = |extra: &str| {
+        let path = landing_scene(dir.path(), extra);
+        let json = shatter(
+            dir.path(),
+            &["simulate", path.as_str(), "--seconds", "2", "--json"],
+        )
+        .ok()
+        .json();
+        assert!(json["bonds_broken"].as_u64().unwrap() > 1_000, "{json}");
+        json["speeds_capped"]
+            .as_u64()
+            .unwrap_or_else(|| panic!("speeds_capped missing: {json}"))
+    };
+    // On by default: bricks squeezed under the landing block are slowed.
+    assert!(capped("") > 0);
+    assert_eq!(capped("contact_speed_cap = false"), 0);
+}
+
 #[test]
 fn before_the_explosion_nothing_breaks() {
     let dir = tempfile::tempdir().unwrap();

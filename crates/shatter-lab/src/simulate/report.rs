@@ -49,6 +49,9 @@ pub struct SimulateReport {
     pub millis_per_step: f64,
     /// Bodies removed because they diverged.
     pub diverged: usize,
+    /// Bodies the contact speed cap slowed, summed over the steps (the `[world]` setting
+    /// `contact_speed_cap`).
+    pub speeds_capped: usize,
     /// Hash of the final state (hex).
     pub digest: String,
     /// The animated glTF written by `--export`.
@@ -83,6 +86,7 @@ impl SimulateReport {
                 0.0
             },
             diverged: stats.diverged,
+            speeds_capped: stats.speeds_capped,
             digest: format!("{:016x}", world.digest()),
             export: None,
             record: None,
