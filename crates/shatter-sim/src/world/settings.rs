@@ -104,6 +104,7 @@ pub struct WorldSettings {
     /// contact when it is far heavier, less when it is lighter), plus what gravity and
     /// Rapier's penetration correction add in one step; a faster one has its velocity
     /// and spin scaled down together to that bound (its move in the step is kept).
+    /// Bodies held by joints (the joints model) are left to them.
     /// Keeps a brick squeezed under a landing block from being flung out at hundreds of
     /// m/s, which Rapier's solver otherwise does at such mass ratios (bench scale's
     /// 5,000-brick landing: 202 m/s). Explosions, shots and split launches are not
