@@ -126,7 +126,7 @@ fn joints_wall(cap: bool) -> (usize, usize, u64) {
     let (mut world, _) = wall_world(BondModel::Joints, 12_000.0);
     world.set_settings(WorldSettings {
         contact_speed_cap: cap,
-        ..world.settings().clone()
+        ..*world.settings()
     });
     world.fire(shot(120.0));
     let broken = run(&mut world, 45);
