@@ -154,6 +154,9 @@ pub struct WorldStats {
     pub runtime_fractures: usize,
     /// The deepest fracture level a runtime cut reached.
     pub max_depth: u32,
+    /// Bodies the contact speed cap slowed since start
+    /// ([`WorldSettings::contact_speed_cap`]).
+    pub speeds_capped: usize,
     /// Smoothed wall-clock time of one simulation step, in ms.
     pub step_ms: f64,
     /// Simulated seconds since start.
@@ -413,6 +416,7 @@ impl ShatterWorld {
             min_bond_health: s.min_bond_health,
             runtime_fractures: s.runtime_fractures,
             max_depth: s.max_depth,
+            speeds_capped: s.speeds_capped,
             step_ms: self.step_ms,
             time: s.time,
             running: state == RunState::Running,

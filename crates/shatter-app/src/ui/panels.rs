@@ -75,6 +75,7 @@ fn overlay(ui: &mut Ui, stats: &SimStats, fps: f64) {
                 "runtime cuts",
                 format!("{} (depth {})", stats.runtime_fractures, stats.max_depth),
             ),
+            ("speeds capped", stats.speeds_capped.to_string()),
             ("step", format!("{:.2} ms", stats.step_ms)),
             ("time", format!("{:.2} s", stats.time)),
         ];
