@@ -71,25 +71,29 @@ fn bench_scale_reports_a_row_per_case_model_and_size_and_writes_the_plots() {
     }
 }
 
+/// `shatter bench scale` in `dir` on 100 bricks of the clusters model for 0.05 s, for
+/// `cases`, with the options `extra`.
+fn small_clusters_run(dir: &std::path::Path, cases: &str, extra: &[&str]) -> common::Run {
+    let mut args = vec![
+        "bench",
+        "scale",
+        "--sizes",
+        "100",
+        "--models",
+        "clusters",
+        "--cases",
+        cases,
+        "--seconds",
+        "0.05",
+    ];
+    args.extend_from_slice(extra);
+    shatter(dir, &args)
+}
+
 #[test]
 fn bench_scale_table_has_a_row_per_run() {
     let dir = tempfile::tempdir().unwrap();
-    let run = shatter(
-        dir.path(),
-        &[
-            "bench",
-            "scale",
-            "--sizes",
-            "100",
-            "--models",
-            "clusters",
-            "--cases",
-            "landing,shots",
-            "--seconds",
-            "0.05",
-        ],
-    )
-    .ok();
+    let run = small_clusters_run(dir.path(), "landing,shots", &[]).ok();
     let lines: Vec<&str> = run.stdout.lines().collect();
     assert!(lines[2].starts_with("landing   clusters"), "{}", run.stdout);
     assert!(lines[3].starts_with("shots     clusters"), "{}", run.stdout);
@@ -99,25 +103,9 @@ fn bench_scale_table_has_a_row_per_run() {
 #[test]
 fn bench_scale_can_turn_the_contact_speed_cap_off() {
     let dir = tempfile::tempdir().unwrap();
-    let json = shatter(
-        dir.path(),
-        &[
-            "bench",
-            "scale",
-            "--sizes",
-            "100",
-            "--models",
-            "clusters",
-            "--cases",
-            "landing",
-            "--seconds",
-            "0.05",
-            "--no-contact-speed-cap",
-            "--json",
-        ],
-    )
-    .ok()
-    .json();
+    let json = small_clusters_run(dir.path(), "landing", &["--no-contact-speed-cap", "--json"])
+        .ok()
+        .json();
     assert_eq!(json["contact_speed_cap"], false);
     let rows = json["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 1);
