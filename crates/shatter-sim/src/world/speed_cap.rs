@@ -46,24 +46,12 @@
 use glam::Vec3;
 use rapier3d::prelude::*;
 
-/// A moving body's state when a step starts.
-#[derive(Debug, Clone, Copy)]
-struct Before {
-    /// The recording it belongs to (entries of earlier ones are stale).
-    epoch: u64,
-    /// The handle's generation (an index reused by another body is not this one).
-    generation: u32,
-    linvel: Vec3,
-    angvel: Vec3,
-}
-
-/// The moving bodies' velocities at the start of a step, by body index.
+/// The moving bodies' velocities (linear, angular) at the start of a step, by body index.
+/// Recorded afresh before each step and read just after it: Rapier's step neither adds
+/// nor removes bodies, so an index names the same body in both.
 #[derive(Debug, Default, Clone)]
 pub(crate) struct SpeedCap {
-    before: Vec<Option<Before>>,
-    /// Counts the recordings (one per step, never reset: a world rebuilt or reset reuses
-    /// body handles, so a step number would not tell an old entry from a new one).
-    epoch: u64,
+    before: Vec<Option<(Vec3, Vec3)>>,
 }
 
 impl SpeedCap {
@@ -71,33 +59,23 @@ impl SpeedCap {
     /// set, not Rapier's active set: bodies added since the last step, such as the parts
     /// of a split and their launch velocities, join that set only during the step.)
     pub(crate) fn record(&mut self, physics: &PhysicsWorld) {
-        self.epoch += 1;
-        let epoch = self.epoch;
+        self.before.clear();
         for (h, rb) in physics.bodies.iter() {
             if rb.is_fixed() || rb.is_sleeping() {
                 continue;
             }
-            let (index, generation) = h.into_raw_parts();
-            let index = index as usize;
+            let index = h.into_raw_parts().0 as usize;
             if self.before.len() <= index {
                 self.before.resize(index + 1, None);
             }
-            self.before[index] = Some(Before {
-                epoch,
-                generation,
-                linvel: rb.linvel(),
-                angvel: rb.angvel(),
-            });
+            self.before[index] = Some((rb.linvel(), rb.angvel()));
         }
     }
 
-    /// A body's state before the step; `None` when it was asleep (at rest) or is new.
-    fn before(&self, h: RigidBodyHandle) -> Option<&Before> {
-        let (index, generation) = h.into_raw_parts();
-        self.before
-            .get(index as usize)?
-            .as_ref()
-            .filter(|b| b.epoch == self.epoch && b.generation == generation)
+    /// A body's velocity and spin before the step; `None` when it was asleep (at rest) or
+    /// fixed.
+    fn before(&self, h: RigidBodyHandle) -> Option<(Vec3, Vec3)> {
+        *self.before.get(h.into_raw_parts().0 as usize)?
     }
 
     /// Velocity of body `h` before the step at world point `p`, a point of the body now
@@ -110,7 +88,7 @@ impl SpeedCap {
         };
         let arm = p - rb.mass_properties().world_com;
         match self.before(h) {
-            Some(b) => b.linvel + b.angvel.cross(arm),
+            Some((v, w)) => v + w.cross(arm),
             None if rb.is_kinematic() => rb.velocity_at_point(p),
             None => Vec3::ZERO,
         }
@@ -129,8 +107,7 @@ impl SpeedCap {
             if !rb.is_dynamic() || physics.impulse_joints.attached_joints(h).next().is_some() {
                 continue;
             }
-            let before = self.before(h);
-            let (v0, w0) = before.map_or((Vec3::ZERO, Vec3::ZERO), |b| (b.linvel, b.angvel));
+            let (v0, w0) = self.before(h).unwrap_or((Vec3::ZERO, Vec3::ZERO));
             let now = speed(rb, rb.linvel(), rb.angvel());
             let own = speed(rb, v0, w0);
             // Cheap test first: the bound is at least its own speed and the margin.
